@@ -1,0 +1,70 @@
+// Cluster normalization (paper, section 3.4): a cluster whose positions are elongated,
+// lambda1 / lambda2 > threshold for the two largest eigenvalues of their covariance,
+// is split in two by the plane through its centroid perpendicular to the major axis.
+//
+// Clusters smaller than `minSplitSize` are left alone: the covariance of two to five
+// points is dominated by sampling noise, and splitting them mostly makes singletons
+// that rejoining merges back, inflating the count without improving the shape.
+#ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
+#define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
+
+#include <vector>
+
+#include <vcg/space/point3.h>
+
+#include "clustering.h"
+#include "principal_axes.h"
+
+namespace vcg {
+namespace gaussphere {
+
+struct ClusterNormalizationParams
+{
+    double threshold = 6.0;  ///< split when lambda1 / lambda2 exceeds it (the paper's 6.0)
+    int minSplitSize = 6;    ///< clusters with fewer points are never split
+};
+
+/// One splitting pass over all clusters. Returns the number of clusters split.
+/// Deterministic: new labels are numbered in the order of the clusters they come from.
+inline int SplitElongatedClusters(const std::vector<vcg::Point3f> &points, const ClusterNormalizationParams &param,
+                                  Clustering &clusters)
+{
+    const ClusterMembers members(clusters);
+    const int count = clusters.clusterCount;
+    // Per cluster: the splitting plane (centroid, major axis), or a zero axis for "keep".
+    std::vector<Eigen::Vector3d> centroid(count), majorAxis(count, Eigen::Vector3d::Zero());
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int c = 0; c < count; ++c) {
+        if (members.Size(c) < std::max(2, param.minSplitSize)) continue;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int *i = members.begin(c); i != members.end(c); ++i)
+            mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);
+        mean /= members.Size(c);
+        CovarianceAccumulator cov;
+        for (const int *i = members.begin(c); i != members.end(c); ++i)
+            cov.Add(Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - mean);
+        const PrincipalAxes pa = ComputePrincipalAxes(cov.Covariance());
+        if (!(pa.value[0] > 0) || pa.value[0] <= param.threshold * pa.value[1]) continue;
+        centroid[c] = mean;
+        majorAxis[c] = pa.axis.col(0);
+    }
+    int split = 0;
+    for (int c = 0; c < count; ++c) {
+        if (majorAxis[c].isZero()) continue;
+        const int newLabel = clusters.clusterCount;
+        int moved = 0;
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            const Eigen::Vector3d d = Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - centroid[c];
+            if (d.dot(majorAxis[c]) > 0) { clusters.label[*i] = newLabel; ++moved; }
+        }
+        if (moved == 0) continue; // every point on the plane: nothing to split
+        ++clusters.clusterCount;
+        ++split;
+    }
+    return split;
+}
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif

@@ -1,0 +1,57 @@
+// A partition of points into clusters: one label per point, and the member lists that
+// the later stages walk. Points excluded from resampling carry the label -1.
+#ifndef VCG_EXT_GAUSSPHERE_CLUSTERING_H
+#define VCG_EXT_GAUSSPHERE_CLUSTERING_H
+
+#include <vector>
+
+namespace vcg {
+namespace gaussphere {
+
+struct Clustering
+{
+    std::vector<int> label;  ///< per point: cluster index in [0, clusterCount) or -1
+    int clusterCount = 0;
+
+    /// Renumbers clusters 0..count-1 in order of first appearance, dropping empty ones.
+    void Compact()
+    {
+        std::vector<int> remap(clusterCount, -1);
+        int next = 0;
+        for (int &l : label) {
+            if (l < 0) continue;
+            if (remap[l] < 0) remap[l] = next++;
+            l = remap[l];
+        }
+        clusterCount = next;
+    }
+};
+
+/// Members of every cluster, grouped: cluster c owns index[offset[c], offset[c+1]),
+/// in increasing point order (a counting sort, so deterministic).
+struct ClusterMembers
+{
+    std::vector<int> offset;
+    std::vector<int> index;
+
+    explicit ClusterMembers(const Clustering &c)
+        : offset(c.clusterCount + 1, 0)
+    {
+        for (int l : c.label)
+            if (l >= 0) ++offset[l + 1];
+        for (int k = 0; k < c.clusterCount; ++k) offset[k + 1] += offset[k];
+        index.resize(offset.back());
+        std::vector<int> cursor(offset.begin(), offset.end() - 1);
+        for (int i = 0; i < int(c.label.size()); ++i)
+            if (c.label[i] >= 0) index[cursor[c.label[i]]++] = i;
+    }
+
+    int Size(int c) const { return offset[c + 1] - offset[c]; }
+    const int *begin(int c) const { return index.data() + offset[c]; }
+    const int *end(int c) const { return index.data() + offset[c + 1]; }
+};
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif

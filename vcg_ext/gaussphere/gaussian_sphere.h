@@ -1,0 +1,196 @@
+// Subdivided Gaussian sphere: a regular triangulation of the unit sphere with O(1)
+// lookup of the triangle that contains a unit normal.
+//
+// Construction: every face of a base polyhedron inscribed in the unit sphere (octahedron
+// or icosahedron) is cut into (n-1)^2 triangles by n-1 segments per edge; the vertices
+// are projected onto the sphere along rays from the centre (gnomonic projection). A
+// normal is located by intersecting its ray with the face plane of its base face and
+// reading the barycentric grid cell there, so lookup costs one 3x3 product.
+//
+// Level n and d_max. The paper gives d_max = sqrt(7*pi^2 / (8 (n-1)^2)) as "the maximal
+// length of a Gaussian edge" for level n and varies n = 8, 16, 24; the 1/(n-1) scaling
+// is n-1 segments per base edge, which is what this class builds. The formula is
+// larger than the true maximal chord of either triangulation (octahedron: 1.2x,
+// icosahedron: 2.2x; see MaxEdgeLength()). The resampler uses the formula's d_max for the
+// cone of normals and for the propagation radius, as the paper does, since that reading
+// reproduces the paper's neighbourhood sizes (6-16 of 16) and counts.
+#ifndef VCG_EXT_GAUSSPHERE_GAUSSIAN_SPHERE_H
+#define VCG_EXT_GAUSSPHERE_GAUSSIAN_SPHERE_H
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <vector>
+
+#include <vcg/space/point3.h>
+
+namespace vcg {
+namespace gaussphere {
+
+enum class BasePolyhedron { Octahedron, Icosahedron };
+
+class GaussianSphere
+{
+public:
+    typedef vcg::Point3f Point3;
+
+    /// level >= 2: the paper's n; each base edge is cut into level-1 segments.
+    GaussianSphere(int level, BasePolyhedron base = BasePolyhedron::Octahedron)
+        : level_(std::max(2, level)), segments_(level_ - 1), base_(base)
+    {
+        BuildBaseFaces();
+    }
+
+    int Level() const { return level_; }
+    BasePolyhedron Base() const { return base_; }
+    int BaseFaceCount() const { return int(faces_.size()); }
+
+    /// Triangle ids lie in [0, TriangleIdCount()); every id denotes one triangle.
+    int TriangleIdCount() const { return BaseFaceCount() * segments_ * segments_; }
+
+    /// The paper's d_max for this level (a chord length on the unit sphere).
+    double PaperMaxEdgeLength() const { return PaperMaxEdgeLength(level_); }
+    static double PaperMaxEdgeLength(int level)
+    {
+        const double pi = 3.14159265358979323846;
+        const double m = std::max(1, level - 1);
+        return std::sqrt(7.0 * pi * pi / (8.0 * m * m));
+    }
+
+    /// Index of the triangle containing the direction `normal` (need not be unit length,
+    /// must be non-zero and finite). Points on shared edges or vertices go to one
+    /// deterministic neighbour.
+    int TriangleOf(const Point3 &normal) const
+    {
+        const int f = BaseFaceOf(normal);
+        const Face &face = faces_[f];
+        // Barycentric coordinates of the ray's hit on the face plane, up to scale.
+        double b[3];
+        for (int r = 0; r < 3; ++r)
+            b[r] = face.inv[r][0] * normal[0] + face.inv[r][1] * normal[1] + face.inv[r][2] * normal[2];
+        const double s = b[0] + b[1] + b[2];
+        const double u = std::max(0.0, b[1] / s) * segments_;
+        const double v = std::max(0.0, b[2] / s) * segments_;
+        int i = std::min(int(u), segments_ - 1);
+        int j = std::min(int(v), segments_ - 1 - i);
+        const bool upper = (u - i) + (v - j) > 1.0 && i + j < segments_ - 1;
+        return f * segments_ * segments_ + LocalIndex(i, j, upper);
+    }
+
+    /// The three unit vertices of triangle `id`, counter-clockwise seen from outside.
+    void TriangleVertices(int id, Point3 &a, Point3 &b, Point3 &c) const
+    {
+        const int per = segments_ * segments_;
+        const Face &face = faces_[id / per];
+        int local = id % per;
+        // Rows i hold 2*(m-i)-1 triangles: m-i lower ones and m-i-1 upper ones.
+        int i = 0;
+        while (local >= 2 * (segments_ - i) - 1) { local -= 2 * (segments_ - i) - 1; ++i; }
+        const bool upper = local >= segments_ - i;
+        const int j = upper ? local - (segments_ - i) : local;
+        if (!upper) {
+            a = GridPoint(face, i, j); b = GridPoint(face, i + 1, j); c = GridPoint(face, i, j + 1);
+        } else {
+            a = GridPoint(face, i + 1, j); b = GridPoint(face, i + 1, j + 1); c = GridPoint(face, i, j + 1);
+        }
+    }
+
+    /// Longest edge (chord) of the actual triangulation.
+    double MaxEdgeLength() const
+    {
+        double longest = 0;
+        for (int id = 0; id < TriangleIdCount(); ++id) {
+            Point3 a, b, c;
+            TriangleVertices(id, a, b, c);
+            longest = std::max({longest, double((a - b).Norm()), double((b - c).Norm()), double((c - a).Norm())});
+        }
+        return longest;
+    }
+
+private:
+    struct Face
+    {
+        Point3 v[3];
+        double inv[3][3]; // inverse of the matrix whose columns are v[0], v[1], v[2]
+    };
+
+    int LocalIndex(int i, int j, bool upper) const
+    {
+        // Row i starts after sum_{r<i} (2(m-r)-1) = i(2m-i) triangles.
+        const int rowStart = i * (2 * segments_ - i);
+        return rowStart + (upper ? (segments_ - i) + j : j);
+    }
+
+    Point3 GridPoint(const Face &f, int i, int j) const
+    {
+        const float u = float(i) / segments_, v = float(j) / segments_;
+        Point3 p = f.v[0] * (1 - u - v) + f.v[1] * u + f.v[2] * v;
+        return p.Normalize();
+    }
+
+    int BaseFaceOf(const Point3 &n) const
+    {
+        if (base_ == BasePolyhedron::Octahedron)
+            return (n[0] < 0 ? 1 : 0) | (n[1] < 0 ? 2 : 0) | (n[2] < 0 ? 4 : 0);
+        // Regular polyhedron: the containing face is the one whose centre is nearest.
+        int best = 0;
+        double bestDot = -2;
+        for (int f = 0; f < int(faces_.size()); ++f) {
+            const double d = n.dot(centres_[f]);
+            if (d > bestDot) { bestDot = d; best = f; }
+        }
+        return best;
+    }
+
+    void AddFace(Point3 a, Point3 b, Point3 c)
+    {
+        if (((b - a) ^ (c - a)).dot(a + b + c) < 0) std::swap(b, c);
+        Face f;
+        f.v[0] = a; f.v[1] = b; f.v[2] = c;
+        const double m[3][3] = {{a[0], b[0], c[0]}, {a[1], b[1], c[1]}, {a[2], b[2], c[2]}};
+        const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                         - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        for (int r = 0; r < 3; ++r)
+            for (int col = 0; col < 3; ++col) {
+                // inverse = adjugate / det; adjugate[r][col] = cofactor[col][r]
+                const int r1 = (col + 1) % 3, r2 = (col + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+                f.inv[r][col] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
+            }
+        faces_.push_back(f);
+        centres_.push_back((a + b + c).Normalize());
+    }
+
+    void BuildBaseFaces()
+    {
+        if (base_ == BasePolyhedron::Octahedron) {
+            // Face index = sign bits of (x, y, z), matching BaseFaceOf().
+            for (int f = 0; f < 8; ++f) {
+                const float sx = (f & 1) ? -1.f : 1.f, sy = (f & 2) ? -1.f : 1.f, sz = (f & 4) ? -1.f : 1.f;
+                AddFace(Point3(sx, 0, 0), Point3(0, sy, 0), Point3(0, 0, sz));
+            }
+            return;
+        }
+        const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
+        std::vector<Point3> v = {
+            {-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+        for (Point3 &p : v) p.Normalize();
+        const int tri[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+                                {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+                                {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+        for (const auto &f : tri) AddFace(v[f[0]], v[f[1]], v[f[2]]);
+    }
+
+    int level_;
+    int segments_;
+    BasePolyhedron base_;
+    std::vector<Face> faces_;
+    std::vector<Point3> centres_;
+};
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif

@@ -1,0 +1,63 @@
+// Singleton rejoining (paper, section 3.3): a one-point cluster joins the neighbouring
+// cluster whose normal is closest to its own (least 1 - <n, n_cluster>).
+//
+// A cluster's normal is the normalized mean of its members' normals. All decisions are
+// taken against the clustering as it was before the pass, so the result does not
+// depend on the processing order or the thread count; a singleton only joins clusters
+// of two or more points, so two singletons never swap into each other. A singleton
+// whose adaptive neighbourhood has no other cluster (an isolated point, or one whose
+// normal differs from all its neighbours') stays a cluster of its own.
+#ifndef VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
+#define VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
+
+#include <vector>
+
+#include <vcg/space/point3.h>
+
+#include "adaptive_neighbors.h"
+#include "clustering.h"
+
+namespace vcg {
+namespace gaussphere {
+
+/// Returns the number of singletons that joined a neighbouring cluster.
+/// Postcondition: clusters may contain empty labels; call Compact() when needed.
+inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+                            Clustering &clusters)
+{
+    const int n = int(clusters.label.size());
+    std::vector<int> size(clusters.clusterCount, 0);
+    std::vector<vcg::Point3f> normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
+    for (int i = 0; i < n; ++i) {
+        const int l = clusters.label[i];
+        if (l < 0) continue;
+        ++size[l];
+        normalSum[l] += normals[i];
+    }
+    std::vector<int> target(n, -1);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (int i = 0; i < n; ++i) {
+        const int own = clusters.label[i];
+        if (own < 0 || size[own] != 1) continue;
+        float bestScore = 3.f;
+        for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
+            const int l = clusters.label[*q];
+            if (l < 0 || l == own || size[l] < 2) continue;
+            const float norm = normalSum[l].Norm();
+            const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
+            if (score < bestScore || (score == bestScore && l < target[i])) {
+                bestScore = score;
+                target[i] = l;
+            }
+        }
+    }
+    int joined = 0;
+    for (int i = 0; i < n; ++i)
+        if (target[i] >= 0) { clusters.label[i] = target[i]; ++joined; }
+    return joined;
+}
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif

@@ -1,0 +1,151 @@
+// Representative surfels (paper, sections 3.5 and 4): one elliptical surfel per cluster.
+//
+// - Position: the centroid of the members.
+// - Normal: the L2,1-optimal normal, the normalized average of the members' normals
+//   weighted by theta(r) = exp(-r^2 / h^2) of their distance r to the centroid. When all
+//   weights underflow (a cluster much wider than h) the plain average is used.
+// - Axis directions: the eigenvectors of the covariance of the members' normals about
+//   that normal, sum (n_i - n')(n_i - n')^T, projected into the tangent plane, as in the
+//   paper. Where that covariance is degenerate (a flat cluster whose normals all agree,
+//   or fewer than three members) the directions come from the covariance of the members'
+//   positions instead, and a single point gets an arbitrary tangent frame.
+// - Axis lengths: the paper scales the major axis to the sampling density and sets the
+//   aspect to lambda2/lambda1 of the normal covariance, a ratio of normal variations
+//   rather than of lengths. Here the ellipse is fitted to the members instead: the aspect
+//   is the ratio of the members' spreads along the two directions (the longer one becomes
+//   the major axis), the ellipse is scaled until it contains every member's projection,
+//   and both semi-axes grow by `coverageMargin` times the local sample spacing so that
+//   the ellipses of neighbouring clusters overlap and leave no holes.
+#ifndef VCG_EXT_GAUSSPHERE_SURFEL_GENERATION_H
+#define VCG_EXT_GAUSSPHERE_SURFEL_GENERATION_H
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <vcg/space/point3.h>
+
+#include "clustering.h"
+#include "principal_axes.h"
+
+namespace vcg {
+namespace gaussphere {
+
+struct Surfel
+{
+    vcg::Point3f position;
+    vcg::Point3f normal;     ///< unit length
+    vcg::Point3f majorAxis;  ///< semi-axis vector, tangent
+    vcg::Point3f minorAxis;  ///< semi-axis vector, tangent, orthogonal to majorAxis, not longer
+    int memberCount = 0;
+};
+
+struct SurfelGenerationParams
+{
+    double weightWidth = 0.01;     ///< h of theta(r) = exp(-r^2/h^2), in model units
+    double coverageMargin = 0.75;  ///< semi-axes grow by this times the mean local spacing
+    double minAspect = 0.1;        ///< lower bound of minor/major, avoids needle ellipses
+};
+
+namespace detail {
+
+inline Eigen::Vector3d ToEigen(const vcg::Point3f &p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
+inline vcg::Point3f ToPoint(const Eigen::Vector3d &v) { return vcg::Point3f(float(v[0]), float(v[1]), float(v[2])); }
+
+/// Unit tangent direction from `dir` projected off `normal`, or zero if `dir` is (nearly) normal.
+inline Eigen::Vector3d TangentPart(const Eigen::Vector3d &dir, const Eigen::Vector3d &normal)
+{
+    const Eigen::Vector3d t = dir - dir.dot(normal) * normal;
+    const double len = t.norm();
+    return len > 1e-6 ? Eigen::Vector3d(t / len) : Eigen::Vector3d::Zero();
+}
+
+inline Eigen::Vector3d AnyTangent(const Eigen::Vector3d &normal)
+{
+    const Eigen::Vector3d helper = std::abs(normal[0]) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    return normal.cross(helper).normalized();
+}
+
+} // namespace detail
+
+/// One surfel per cluster, in cluster order. `spacing` is the per-point local sample
+/// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
+inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &points,
+                                           const std::vector<vcg::Point3f> &normals,
+                                           const std::vector<float> &spacing, const Clustering &clusters,
+                                           const SurfelGenerationParams &param)
+{
+    using detail::ToEigen;
+    const ClusterMembers members(clusters);
+    std::vector<Surfel> surfels(clusters.clusterCount);
+    const double invH2 = param.weightWidth > 0 ? 1.0 / (param.weightWidth * param.weightWidth) : 0.0;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int c = 0; c < clusters.clusterCount; ++c) {
+        const int size = members.Size(c);
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        double meanSpacing = 0;
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            centroid += ToEigen(points[*i]);
+            meanSpacing += spacing[*i];
+        }
+        centroid /= size;
+        meanSpacing /= size;
+
+        Eigen::Vector3d weighted = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            const double r2 = (ToEigen(points[*i]) - centroid).squaredNorm();
+            weighted += std::exp(-r2 * invH2) * ToEigen(normals[*i]);
+            plain += ToEigen(normals[*i]);
+        }
+        const Eigen::Vector3d normal = weighted.norm() > 1e-12 ? weighted.normalized()
+                                     : plain.norm() > 1e-12 ? plain.normalized()
+                                                             : ToEigen(normals[*members.begin(c)]);
+
+        CovarianceAccumulator normalCov, positionCov;
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            normalCov.Add(ToEigen(normals[*i]) - normal);
+            positionCov.Add(ToEigen(points[*i]) - centroid);
+        }
+        Eigen::Vector3d u = Eigen::Vector3d::Zero();
+        if (size >= 3) {
+            const PrincipalAxes byNormals = ComputePrincipalAxes(normalCov.Covariance());
+            if (byNormals.value[0] > 1e-8) // otherwise the normals agree: no direction to read
+                u = detail::TangentPart(byNormals.axis.col(0), normal);
+        }
+        if (u.isZero() && size >= 2)
+            u = detail::TangentPart(ComputePrincipalAxes(positionCov.Covariance()).axis.col(0), normal);
+        if (u.isZero()) u = detail::AnyTangent(normal);
+        Eigen::Vector3d v = normal.cross(u);
+
+        // Spread along u and v; the longer direction becomes the major axis.
+        double sxx = 0, syy = 0;
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
+            sxx += d.dot(u) * d.dot(u);
+            syy += d.dot(v) * d.dot(v);
+        }
+        if (syy > sxx) { std::swap(sxx, syy); const Eigen::Vector3d t = u; u = v; v = -t; }
+        const double aspect = sxx > 0 ? std::max(param.minAspect, std::sqrt(syy / sxx)) : 1.0;
+        double scale = 0; // smallest major semi-axis whose ellipse (aspect fixed) holds every member
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
+            const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
+            const double x = d.dot(u), y = d.dot(v) / aspect;
+            scale = std::max(scale, x * x + y * y);
+        }
+        scale = std::sqrt(scale);
+        const double margin = param.coverageMargin * meanSpacing;
+
+        Surfel &s = surfels[c];
+        s.position = detail::ToPoint(centroid);
+        s.normal = detail::ToPoint(normal);
+        s.majorAxis = detail::ToPoint(u * (scale + margin));
+        s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
+        s.memberCount = size;
+    }
+    return surfels;
+}
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif
