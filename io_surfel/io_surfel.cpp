@@ -1,0 +1,91 @@
+#include "io_surfel.h"
+
+#include "surfel_file.h"
+#include "surfel_mesh.h"
+
+#include <QFile>
+
+using gaussphere::Surfel;
+
+namespace {
+
+// Everything a .surfel file stores; saving writes all of it whatever the mask asks.
+constexpr int kSurfelComponents = vcg::tri::io::Mask::IOM_VERTCOORD |
+                                  vcg::tri::io::Mask::IOM_VERTNORMAL |
+                                  vcg::tri::io::Mask::IOM_VERTRADIUS |
+                                  vcg::tri::io::Mask::IOM_VERTQUALITY |
+                                  vcg::tri::io::Mask::IOM_VERTCOLOR;
+
+std::string localPath(const QString& fileName)
+{
+	return QFile::encodeName(fileName).toStdString();
+}
+
+}  // namespace
+
+QString SurfelIOPlugin::pluginName() const
+{
+	return "IOSurfel";
+}
+
+QList<MeshIOInterface::Format> SurfelIOPlugin::importFormats() const
+{
+	return {Format("Gaussian sphere surfels", tr("SURFEL"))};
+}
+
+QList<MeshIOInterface::Format> SurfelIOPlugin::exportFormats() const
+{
+	return importFormats();
+}
+
+void SurfelIOPlugin::GetExportMaskCapability(QString& /*format*/, int& capability,
+                                             int& defaultBits) const
+{
+	capability = defaultBits = kSurfelComponents;
+}
+
+bool SurfelIOPlugin::open(const QString& /*format*/, const QString& fileName, MeshModel& m,
+                          int& mask, const RichParameterList& /*par*/, vcg::CallBackPos* cb,
+                          QWidget* /*parent*/)
+{
+	if (cb != nullptr) (*cb)(0, "Loading surfels...");
+	std::vector<Surfel> surfels;
+	std::string error;
+	if (!gaussphere::readSurfelFile(localPath(fileName), surfels, error)) {
+		errorMessage = QString("Error encountered while loading file:\n\"%1\"\n\nError details: %2")
+		                   .arg(fileName, QString::fromStdString(error));
+		return false;
+	}
+
+	// The normal flag also keeps MeshLab from recomputing normals of this face-less layer.
+	mask = kSurfelComponents;
+	m.Enable(mask);
+	gaussphere::surfelsToMesh(surfels, m.cm);
+	vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
+	if (!surfels.empty() && !gaussphere::hasEllipseFrames(surfels))
+		Log("%s: every ellipse axis is zero, the layer gets no ellipse attributes",
+		    qUtf8Printable(fileName));
+	if (cb != nullptr) (*cb)(100, "Done");
+	return true;
+}
+
+bool SurfelIOPlugin::save(const QString& /*format*/, const QString& fileName, MeshModel& m,
+                          const int /*mask*/, const RichParameterList& /*par*/,
+                          vcg::CallBackPos* cb, QWidget* /*parent*/)
+{
+	if (cb != nullptr) (*cb)(0, "Saving surfels...");
+	const std::vector<Surfel> surfels = gaussphere::surfelsFromMesh(m.cm);
+	std::string error;
+	if (!gaussphere::writeSurfelFile(localPath(fileName), surfels, error)) {
+		errorMessage = QString("Error encountered while exporting file %1:\n%2")
+		                   .arg(fileName, QString::fromStdString(error));
+		return false;
+	}
+	if (!surfels.empty() && !gaussphere::hasEllipseFrames(surfels))
+		Log("%s: the layer has no ellipse frames, written with zero axes",
+		    qUtf8Printable(fileName));
+	if (cb != nullptr) (*cb)(100, "Done");
+	return true;
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(SurfelIOPlugin)

@@ -1,0 +1,269 @@
+#include "surfel_file.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <istream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+namespace gaussphere {
+namespace {
+
+static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4,
+              "the file stores IEEE 754 single precision floats");
+
+constexpr std::size_t kFloatPropertyCount = 14;
+constexpr std::size_t kColorPropertyCount = 4;
+constexpr std::size_t kRecordBytes = kFloatPropertyCount * 4 + kColorPropertyCount;
+constexpr const char* kFloatPropertyNames[kFloatPropertyCount] = {
+    "x", "y", "z", "nx", "ny", "nz", "radius",
+    "major_x", "major_y", "major_z", "minor_x", "minor_y", "minor_z", "quality"};
+constexpr const char* kColorPropertyNames[kColorPropertyCount] = {"red", "green", "blue", "alpha"};
+
+// Where the float properties of a record live in a Surfel, in kFloatPropertyNames' order.
+std::array<float*, kFloatPropertyCount> floatFields(Surfel& s) {
+  return {{&s.position[0], &s.position[1], &s.position[2], &s.normal[0], &s.normal[1],
+           &s.normal[2], &s.radius, &s.majorAxis[0], &s.majorAxis[1], &s.majorAxis[2],
+           &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality}};
+}
+
+// Explicit byte order, so the file is little-endian whatever the host is.
+void storeFloat(float value, unsigned char* out) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  for (int i = 0; i < 4; ++i) out[i] = static_cast<unsigned char>(bits >> (8 * i));
+}
+
+float loadFloat(const unsigned char* in) {
+  std::uint32_t bits = 0;
+  for (int i = 0; i < 4; ++i) bits |= std::uint32_t(in[i]) << (8 * i);
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+void encode(Surfel surfel, unsigned char* out) {
+  for (float* field : floatFields(surfel)) {
+    storeFloat(*field, out);
+    out += 4;
+  }
+  std::copy(surfel.color.begin(), surfel.color.end(), out);
+}
+
+Surfel decode(const unsigned char* in) {
+  Surfel surfel;
+  for (float* field : floatFields(surfel)) {
+    *field = loadFloat(in);
+    in += 4;
+  }
+  std::copy(in, in + kColorPropertyCount, surfel.color.begin());
+  return surfel;
+}
+
+// Records are streamed through a buffer of this many, to keep memory flat on big files.
+constexpr std::size_t kRecordsPerChunk = 4096;
+
+// A garbage file without newlines must not be read whole as one "header line".
+constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+
+// One header line without its line break (PLY headers written on Windows end in "\r\n").
+bool readHeaderLine(std::istream& in, std::size_t& headerBytes, std::string& line) {
+  line.clear();
+  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+    if (++headerBytes > kMaxHeaderBytes) return false;
+    if (c == '\n') {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      return true;
+    }
+    line.push_back(static_cast<char>(c));
+  }
+  return false;
+}
+
+std::vector<std::string> splitWords(const std::string& line) {
+  std::istringstream words(line);
+  std::vector<std::string> result;
+  for (std::string word; words >> word;) result.push_back(word);
+  return result;
+}
+
+// Everything after the first word, e.g. the text of a comment.
+std::string afterKeyword(const std::string& line) {
+  std::size_t start = line.find_first_not_of(" \t", line.find_first_of(" \t"));
+  return start == std::string::npos ? std::string() : line.substr(start);
+}
+
+bool parseCount(const std::string& text, std::uint64_t& count) {
+  if (text.empty() || text.size() > 19 ||
+      !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return false;
+  count = std::stoull(text);
+  return true;
+}
+
+// PLY names each scalar type two ways.
+bool isFloatType(const std::string& type) { return type == "float" || type == "float32"; }
+bool isUcharType(const std::string& type) { return type == "uchar" || type == "uint8"; }
+
+bool fail(std::string& error, const std::string& reason) {
+  error = reason;
+  return false;
+}
+
+// Checks the header against the layout of docs/surfel_format.md and returns the number of
+// records it announces; the stream is left at the first data byte.
+bool readHeader(std::istream& in, std::uint64_t& count, std::string& error) {
+  std::size_t headerBytes = 0;
+  std::string line;
+  if (!readHeaderLine(in, headerBytes, line) || line != "ply")
+    return fail(error, "not a PLY file: it does not start with a 'ply' line");
+
+  bool hasFormat = false, hasMagic = false, hasVertexElement = false;
+  std::size_t propertyCount = 0;
+  for (;;) {
+    if (!readHeaderLine(in, headerBytes, line))
+      return fail(error, "the PLY header has no 'end_header' line");
+    const std::vector<std::string> words = splitWords(line);
+    if (words.empty()) continue;
+    const std::string& keyword = words[0];
+    if (keyword == "end_header") break;
+    if (keyword == "obj_info") continue;
+    if (keyword == "comment") {
+      const std::string text = afterKeyword(line);
+      if (text == kSurfelFileMagic)
+        hasMagic = true;
+      else if (text.compare(0, 18, "gaussphere-surfel ") == 0)
+        return fail(error, "unsupported .surfel version '" + text + "' (this reader reads '" +
+                               kSurfelFileMagic + "')");
+    } else if (keyword == "format") {
+      if (words.size() != 3 || words[1] != "binary_little_endian" || words[2] != "1.0")
+        return fail(error, "unsupported PLY encoding '" + line +
+                               "': .surfel files are binary_little_endian 1.0");
+      hasFormat = true;
+    } else if (keyword == "element") {
+      if (hasVertexElement || words.size() != 3 || words[1] != "vertex")
+        return fail(error, "unexpected '" + line + "': a .surfel file has one vertex element");
+      if (!parseCount(words[2], count))
+        return fail(error, "invalid vertex count in '" + line + "'");
+      hasVertexElement = true;
+    } else if (keyword == "property") {
+      const bool isColor = propertyCount >= kFloatPropertyCount;
+      const std::size_t index = propertyCount++;
+      const bool expected =
+          hasVertexElement && index < kFloatPropertyCount + kColorPropertyCount &&
+          words.size() == 3 &&
+          (isColor ? isUcharType(words[1]) && words[2] == kColorPropertyNames[index - kFloatPropertyCount]
+                   : isFloatType(words[1]) && words[2] == kFloatPropertyNames[index]);
+      if (!expected)
+        return fail(error, "unexpected '" + line + "' (vertex property " +
+                               std::to_string(index + 1) + " of the .surfel layout)");
+    } else {
+      return fail(error, "unknown PLY header line '" + line + "'");
+    }
+  }
+  if (!hasFormat) return fail(error, "the PLY header has no 'format' line");
+  if (!hasMagic)
+    return fail(error, std::string("not a .surfel file: no 'comment ") + kSurfelFileMagic +
+                           "' in the PLY header");
+  if (!hasVertexElement) return fail(error, "the PLY header has no vertex element");
+  if (propertyCount != kFloatPropertyCount + kColorPropertyCount)
+    return fail(error, "the vertex element has " + std::to_string(propertyCount) +
+                           " properties instead of " +
+                           std::to_string(kFloatPropertyCount + kColorPropertyCount));
+  return true;
+}
+
+// Number of bytes from the current position to the end of a seekable stream.
+bool remainingBytes(std::istream& in, std::uint64_t& bytes) {
+  const std::istream::pos_type here = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::istream::pos_type end = in.tellg();
+  in.seekg(here);
+  if (here == std::istream::pos_type(-1) || end == std::istream::pos_type(-1) || !in)
+    return false;
+  bytes = static_cast<std::uint64_t>(end - here);
+  return true;
+}
+
+}  // namespace
+
+bool operator==(const Surfel& a, const Surfel& b) {
+  return a.position == b.position && a.normal == b.normal && a.radius == b.radius &&
+         a.majorAxis == b.majorAxis && a.minorAxis == b.minorAxis && a.quality == b.quality &&
+         a.color == b.color;
+}
+
+bool readSurfels(std::istream& in, std::vector<Surfel>& surfels, std::string& error) {
+  surfels.clear();
+  std::uint64_t count = 0;
+  if (!readHeader(in, count, error)) return false;
+
+  // Checking the size first also keeps a corrupt count from allocating a huge vector.
+  std::uint64_t dataBytes = 0;
+  if (!remainingBytes(in, dataBytes)) return fail(error, "cannot determine the file size");
+  if (count > dataBytes / kRecordBytes)
+    return fail(error, "truncated file: the header announces " + std::to_string(count) +
+                           " surfels, the data holds " + std::to_string(dataBytes / kRecordBytes));
+  if (dataBytes != count * kRecordBytes)
+    return fail(error, std::to_string(dataBytes - count * kRecordBytes) +
+                           " unexpected bytes after the last surfel");
+
+  surfels.reserve(count);
+  std::vector<unsigned char> chunk(kRecordBytes * std::min<std::uint64_t>(count, kRecordsPerChunk));
+  while (surfels.size() < count) {
+    const std::size_t records = std::min<std::uint64_t>(count - surfels.size(), kRecordsPerChunk);
+    if (!in.read(reinterpret_cast<char*>(chunk.data()), records * kRecordBytes)) {
+      error = "read error after " + std::to_string(surfels.size()) + " surfels";
+      surfels.clear();
+      return false;
+    }
+    for (std::size_t r = 0; r < records; ++r) surfels.push_back(decode(&chunk[r * kRecordBytes]));
+  }
+  return true;
+}
+
+bool readSurfelFile(const std::string& path, std::vector<Surfel>& surfels, std::string& error) {
+  surfels.clear();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(error, "cannot open '" + path + "': " + std::strerror(errno));
+  return readSurfels(in, surfels, error);
+}
+
+bool writeSurfels(std::ostream& out, const std::vector<Surfel>& surfels, std::string& error) {
+  out << "ply\nformat binary_little_endian 1.0\ncomment " << kSurfelFileMagic << "\n"
+      << "element vertex " << surfels.size() << "\n";
+  for (const char* name : kFloatPropertyNames) out << "property float " << name << "\n";
+  for (const char* name : kColorPropertyNames) out << "property uchar " << name << "\n";
+  out << "end_header\n";
+
+  std::vector<unsigned char> chunk(kRecordBytes * kRecordsPerChunk);
+  for (std::size_t first = 0; first < surfels.size() && out; first += kRecordsPerChunk) {
+    const std::size_t records = std::min(surfels.size() - first, kRecordsPerChunk);
+    for (std::size_t r = 0; r < records; ++r) encode(surfels[first + r], &chunk[r * kRecordBytes]);
+    out.write(reinterpret_cast<const char*>(chunk.data()), records * kRecordBytes);
+  }
+  if (!out.flush()) return fail(error, "write error");
+  return true;
+}
+
+bool writeSurfelFile(const std::string& path, const std::vector<Surfel>& surfels,
+                     std::string& error) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) return fail(error, "cannot open '" + path + "' for writing: " + std::strerror(errno));
+  if (!writeSurfels(out, surfels, error)) return fail(error, "cannot write '" + path + "': " + error);
+  out.close();
+  if (!out) return fail(error, "cannot write '" + path + "'");
+  return true;
+}
+
+bool hasEllipseFrames(const std::vector<Surfel>& surfels) {
+  const auto isZero = [](const Vec3f& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; };
+  return std::any_of(surfels.begin(), surfels.end(), [&](const Surfel& s) {
+    return !isZero(s.majorAxis) || !isZero(s.minorAxis);
+  });
+}
+
+}  // namespace gaussphere
