@@ -22,12 +22,12 @@ namespace gaussphere {
 struct NeighborGraph
 {
     int stride = 0;                 ///< k: slots per point
-    std::vector<int> slots;         ///< neighbours of i in slots[i*stride, i*stride + count[i])
+    std::vector<int> adjacency;     ///< neighbours of i in adjacency[i*stride, i*stride + count[i])
     std::vector<std::uint8_t> count;
     std::vector<float> spacing;     ///< mean distance to the (up to) 6 nearest neighbours
 
     int Size() const { return int(count.size()); }
-    const int *begin(int i) const { return slots.data() + size_t(i) * stride; }
+    const int *begin(int i) const { return adjacency.data() + size_t(i) * stride; }
     const int *end(int i) const { return begin(i) + count[i]; }
 };
 
@@ -49,7 +49,7 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     const int n = int(points.size());
     NeighborGraph g;
     g.stride = std::max(1, std::min({param.k, 255, std::max(1, n - 1)}));
-    g.slots.assign(size_t(n) * g.stride, -1);
+    g.adjacency.assign(size_t(n) * g.stride, -1);
     g.count.assign(n, 0);
     g.spacing.assign(n, 0.f);
     const float minDot = float(1.0 - 0.5 * param.coneChord * param.coneChord);
@@ -67,7 +67,7 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
             float sum = 0;
             for (int t = 0; t < near; ++t) sum += std::sqrt(d2[t]);
             g.spacing[i] = near > 0 ? sum / near : 0.f;
-            int *out = g.slots.data() + size_t(i) * g.stride;
+            int *out = g.adjacency.data() + size_t(i) * g.stride;
             int kept = 0;
             for (int t = 0; t < found; ++t)
                 if (normals[i].dot(normals[idx[t]]) >= minDot) out[kept++] = idx[t];

@@ -1,0 +1,173 @@
+#include "filter_gaussphere.h"
+
+#include <cmath>
+
+#include <vcg_ext/gaussphere/resampling.h>
+#include <vcg_ext/gaussphere/surfel_mesh.h>
+
+namespace gs = vcg::gaussphere;
+
+FilterGaussSpherePlugin::FilterGaussSpherePlugin()
+{
+    typeList << FP_GAUSSPHERE_RESAMPLING;
+    for (FilterIDType t : types())
+        actionList << new QAction(filterName(t), this);
+}
+
+QString FilterGaussSpherePlugin::pluginName() const { return "FilterGaussSphere"; }
+
+QString FilterGaussSpherePlugin::filterName(FilterIDType filter) const
+{
+    switch (filter) {
+    case FP_GAUSSPHERE_RESAMPLING: return "Gaussian Sphere Feature-Sensitive Resampling";
+    default: return QString();
+    }
+}
+
+QString FilterGaussSpherePlugin::filterInfo(FilterIDType filter) const
+{
+    switch (filter) {
+    case FP_GAUSSPHERE_RESAMPLING:
+        return "Feature-sensitive resampling of an oriented point set into elliptical surfels.<br>"
+               "Points are clustered by where their normals fall on a subdivided Gaussian sphere: "
+               "labels spread between neighbours whose normals share a Gaussian triangle, one-point "
+               "clusters rejoin their most similar neighbour, and elongated clusters are split until "
+               "they are disc-like. Each cluster becomes one surfel, so the output is dense where "
+               "the normals vary (edges, ridges, fine detail) and sparse on flat parts.<br>"
+               "The result is a new layer <i>&lt;name&gt; resampled</i> with unit normals, per-vertex "
+               "radius, quality = number of input points represented, and the per-vertex attributes "
+               "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors). Save it as "
+               "<i>.surfel</i> to keep the ellipses; PLY keeps position, normal and radius only.<br>"
+               "The input needs per-vertex normals (Filters &gt; Normals, Curvatures and Orientation &gt; "
+               "Compute normals for point sets); points with a zero or invalid normal are skipped.<br><br>"
+               "See: <br><i>Miao Y., Pajarola R., Feng J.</i><br>"
+               "<b>\"Feature sensitive re-sampling of point set surfaces with Gaussian spheres\"</b><br>"
+               "Science China Information Sciences, 2012.";
+    default: return QString();
+    }
+}
+
+MeshFilterInterface::FilterClass FilterGaussSpherePlugin::getClass(QAction *)
+{
+    return FilterClass(MeshFilterInterface::PointSet | MeshFilterInterface::Remeshing);
+}
+
+MeshFilterInterface::FILTER_ARITY FilterGaussSpherePlugin::filterArity(QAction *) const { return SINGLE_MESH; }
+
+// Normals are always allocated in CMeshO; whether they mean anything is checked at run time.
+int FilterGaussSpherePlugin::getPreConditions(QAction *) const { return MeshModel::MM_NONE; }
+
+int FilterGaussSpherePlugin::postCondition(QAction *) const { return MeshModel::MM_VERTCOLOR; }
+
+void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichParameterList &par)
+{
+    const gs::ResamplingParams defaults;
+    const float diag = m.cm.bbox.Diag();
+    par.addParam(RichInt("SubdivisionLevel", defaults.subdivisionLevel, "Gaussian sphere level",
+        "Level n of the Gaussian sphere subdivision (2-256): each face of an octahedron is cut into "
+        "(n-1)^2 triangles. Higher levels separate finer normal variations, giving more surfels and "
+        "lower error; the paper uses 8, 16 and 24."));
+    par.addParam(RichInt("NeighborCount", defaults.neighborCount, "Nearest neighbours",
+        "Number k of nearest neighbours examined around each point (1-255). Only those inside the "
+        "cone of normals of the Gaussian sphere level are kept as adaptive neighbours."));
+    par.addParam(RichInt("PropagationDepth", defaults.propagationDepth, "Propagation depth",
+        "How many neighbour hops a cluster label may travel from its seed point (0 = no limit). "
+        "Small values make many small clusters; large ones let clusters grow across flat regions."));
+    par.addParam(RichFloat("NormalizationThreshold", defaults.normalizationThreshold, "Normalization threshold",
+        "A cluster whose positions have a covariance with lambda1/lambda2 above this value is split "
+        "in two through its centroid, perpendicular to its major axis (must be greater than 1)."));
+    par.addParam(RichInt("MinSplitSize", defaults.minSplitSize, "Minimum cluster size to split",
+        "Clusters with fewer points are never split: their shape estimate is dominated by noise."));
+    par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
+        "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
+        "surfel normal, r being the distance to the cluster centroid. 0 means 1% of the bounding box "
+        "diagonal, the default."));
+    par.addParam(RichInt("MaxIterations", defaults.maxIterations, "Maximum iterations",
+        "Upper bound on the rounds of cluster normalization and singleton rejoining; rounds stop "
+        "earlier once the number of clusters changes by less than 1% of the number of points."));
+    par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
+        "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
+}
+
+bool FilterGaussSpherePlugin::applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par,
+                                          vcg::CallBackPos *cb)
+{
+    switch (ID(filter)) {
+    case FP_GAUSSPHERE_RESAMPLING: return resample(md, par, cb);
+    default: return false;
+    }
+}
+
+bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+    MeshModel *input = md.mm();
+    if (input == nullptr || input->cm.vn == 0) {
+        errorMessage = "The current layer is empty: there are no points to resample.";
+        return false;
+    }
+    CMeshO &in = input->cm;
+    int withNormal = 0;
+    for (const CVertexO &v : in.vert)
+        if (!v.IsD() && v.cN().SquaredNorm() > 0 && std::isfinite(v.cN().SquaredNorm())) ++withNormal;
+    if (withNormal == 0) {
+        errorMessage = "The layer has no normals (all are zero or invalid). Compute them first with "
+                       "Filters > Normals, Curvatures and Orientation > Compute normals for point sets.";
+        return false;
+    }
+
+    gs::ResamplingParams param;
+    param.subdivisionLevel = par.getInt("SubdivisionLevel");
+    param.neighborCount = par.getInt("NeighborCount");
+    param.propagationDepth = par.getInt("PropagationDepth");
+    param.normalizationThreshold = par.getFloat("NormalizationThreshold");
+    param.minSplitSize = par.getInt("MinSplitSize");
+    const float width = par.getAbsPerc("WeightWidth");
+    param.weightWidth = width > 0 ? width : -1.0;
+    param.maxIterations = par.getInt("MaxIterations");
+    const std::string invalid = param.Validate();
+    if (!invalid.empty()) {
+        errorMessage = QString::fromStdString(invalid) + ".";
+        return false;
+    }
+
+    gs::ResamplingResult result;
+    try {
+        result = gs::ResamplePointSet(in, param, cb);
+    } catch (const gs::ResamplingCancelled &) {
+        errorMessage = "Resampling was cancelled.";
+        return false;
+    } catch (const std::exception &e) {
+        errorMessage = QString("Cannot resample: %1.").arg(e.what());
+        return false;
+    }
+
+    auto representative = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<int>(in, gs::kRepresentativeAttribute);
+    for (size_t i = 0; i < in.vert.size(); ++i) representative[i] = result.representative[i];
+    if (par.getBool("ColorizeClusters")) {
+        input->updateDataMask(MeshModel::MM_VERTCOLOR);
+        const int clusters = std::max(1, int(result.surfels.size()));
+        for (size_t i = 0; i < in.vert.size(); ++i) {
+            const int c = result.representative[i];
+            // Scatter spreads neighbouring indices over distant hues.
+            in.vert[i].C() = c < 0 ? vcg::Color4b::Gray : vcg::Color4b::Scatter(std::min(clusters, 4096), c % 4096);
+        }
+    }
+
+    MeshModel *output = md.addNewMesh("", input->label() + " resampled", true);
+    output->updateDataMask(MeshModel::MM_VERTRADIUS | MeshModel::MM_VERTQUALITY);
+    gs::WriteSurfels(result.surfels, output->cm);
+
+    const gs::ResamplingStats &s = result.stats;
+    Log("Gaussian sphere resampling: %d points -> %d surfels (%.2f%%), level %d, %d iteration(s), "
+        "%.1f adaptive neighbours per point",
+        s.inputCount - s.skippedCount, s.outputCount, 100.0 * s.outputCount / std::max(1, s.inputCount - s.skippedCount),
+        param.subdivisionLevel, s.iterations, s.meanAdaptiveNeighbors);
+    Log("Gaussian sphere resampling time: %.3f s (neighbours %.3f, propagation %.3f, normalization %.3f, surfels %.3f)",
+        s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation, s.secondsNormalization, s.secondsSurfels);
+    if (s.skippedCount > 0)
+        Log(GLLogStream::WARNING, "Gaussian sphere resampling skipped %d point(s) with a zero or invalid normal",
+            s.skippedCount);
+    return true;
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterGaussSpherePlugin)

@@ -1,0 +1,34 @@
+// MeshLab filter plugin: Gaussian Sphere Feature-Sensitive Resampling.
+// MeshLab glue only: parameters, preconditions, layers and log; the algorithm is
+// vcg_ext/gaussphere/resampling.h.
+#ifndef FILTER_GAUSSPHERE_H
+#define FILTER_GAUSSPHERE_H
+
+#include <common/interfaces.h>
+
+class FilterGaussSpherePlugin : public QObject, public MeshFilterInterface
+{
+    Q_OBJECT
+    MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
+    Q_INTERFACES(MeshFilterInterface)
+
+public:
+    enum { FP_GAUSSPHERE_RESAMPLING };
+
+    FilterGaussSpherePlugin();
+
+    QString pluginName() const override;
+    QString filterName(FilterIDType filter) const override;
+    QString filterInfo(FilterIDType filter) const override;
+    FilterClass getClass(QAction *) override;
+    FILTER_ARITY filterArity(QAction *) const override;
+    int getPreConditions(QAction *) const override;
+    int postCondition(QAction *) const override;
+    void initParameterSet(QAction *, MeshModel &m, RichParameterList &par) override;
+    bool applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb) override;
+
+private:
+    bool resample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
+};
+
+#endif
