@@ -185,7 +185,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     propagation.reference = param.reference;
     propagation.order = param.order;
     PropagateIndices(normals, triangle, graph, tree.LeafOrder(), propagation, clusters);
-    RejoinSingletons(normals, graph, clusters);
+    RejoinSingletons(normals, graph, dMax, clusters);
     clusters.Compact();
     stats.naiveCount = clusters.clusterCount;
     stats.secondsPropagation = timer.Lap();
@@ -200,7 +200,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
                        "Gaussian sphere resampling: cluster normalization");
         const int before = clusters.clusterCount;
         SplitElongatedClusters(points, normalization, clusters);
-        RejoinSingletons(normals, graph, clusters);
+        RejoinSingletons(normals, graph, dMax, clusters);
         clusters.Compact();
         ++stats.iterations;
         if (std::abs(clusters.clusterCount - before) < settled) break;

@@ -1,12 +1,15 @@
 // Singleton rejoining (paper, section 3.3): a one-point cluster joins the neighbouring
 // cluster whose normal is closest to its own (least 1 - <n, n_cluster>).
 //
-// A cluster's normal is the normalized mean of its members' normals. All decisions are
-// taken against the clustering as it was before the pass, so the result does not
-// depend on the processing order or the thread count; a singleton only joins clusters
-// of two or more points, so two singletons never swap into each other. A singleton
-// whose adaptive neighbourhood has no other cluster (an isolated point, or one whose
-// normal differs from all its neighbours') stays a cluster of its own.
+// A cluster's normal is the normalized mean of its members' normals. A singleton only
+// joins a cluster whose normal lies inside its cone of normals (chord <= maxChord, the
+// same cone that selects adaptive neighbours), so rejoining never drags a cluster's
+// normal along a chain of points. Passes repeat until no singleton moves: a singleton
+// whose neighbours were all singletons may find a cluster once they have joined one.
+// Within a pass all decisions are taken against the clustering as it was before the
+// pass, so the result does not depend on the processing order or the thread count; a
+// singleton only joins clusters of two or more points, so two singletons never swap
+// into each other. A singleton with no such cluster around stays a cluster of its own.
 #ifndef VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
 #define VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
 
@@ -20,11 +23,11 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Returns the number of singletons that joined a neighbouring cluster.
-/// Postcondition: clusters may contain empty labels; call Compact() when needed.
-inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
-                            Clustering &clusters)
+/// One pass; returns the number of singletons that joined a neighbouring cluster.
+inline int RejoinSingletonsOnce(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+                                double maxChord, Clustering &clusters)
 {
+    const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
     const int n = int(clusters.label.size());
     std::vector<int> size(clusters.clusterCount, 0);
     std::vector<vcg::Point3f> normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
@@ -39,13 +42,13 @@ inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const Neig
     for (int i = 0; i < n; ++i) {
         const int own = clusters.label[i];
         if (own < 0 || size[own] != 1) continue;
-        float bestScore = 3.f;
+        float bestScore = maxScore;
         for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
             const int l = clusters.label[*q];
             if (l < 0 || l == own || size[l] < 2) continue;
             const float norm = normalSum[l].Norm();
             const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
-            if (score < bestScore || (score == bestScore && l < target[i])) {
+            if (score < bestScore || (score == bestScore && (target[i] < 0 || l < target[i]))) {
                 bestScore = score;
                 target[i] = l;
             }
@@ -54,6 +57,20 @@ inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const Neig
     int joined = 0;
     for (int i = 0; i < n; ++i)
         if (target[i] >= 0) { clusters.label[i] = target[i]; ++joined; }
+    return joined;
+}
+
+/// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
+/// Postcondition: clusters may contain empty labels; call Compact() when needed.
+inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+                            double maxChord, Clustering &clusters, int maxPasses = 32)
+{
+    int joined = 0;
+    for (int pass = 0; pass < maxPasses; ++pass) {
+        const int moved = RejoinSingletonsOnce(normals, graph, maxChord, clusters);
+        if (moved == 0) break;
+        joined += moved;
+    }
     return joined;
 }
 
