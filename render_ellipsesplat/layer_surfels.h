@@ -1,0 +1,26 @@
+#pragma once
+// Turning a MeshLab layer into splats: which layers can be splatted, their ellipses, and a
+// cheap fingerprint telling when a layer changed since its splats were uploaded.
+
+#include "surfel_arrays.h"
+
+#include <cstdint>
+
+class MeshModel;
+
+namespace splat {
+
+// True when at least one live vertex has a non-zero normal. MeshLab loads a PLY without
+// normals with all-zero normals, so the values are the only way to tell.
+bool layerHasNormals(const MeshModel &layer);
+
+// Surfels of every live vertex: ellipses from the EllipseMajorAxis/EllipseMinorAxis
+// attributes when the layer has both, otherwise circles whose radius is R() when the radius
+// component is enabled and positive, else the distance to the k-th nearest neighbour.
+SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours);
+
+// Changes whenever anything surfelsOfLayer reads changes (positions, normals, colours,
+// radii, ellipse attributes, which of them exist, and the neighbour count).
+std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours);
+
+} // namespace splat

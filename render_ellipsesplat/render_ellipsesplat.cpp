@@ -1,0 +1,169 @@
+#include "render_ellipsesplat.h"
+
+#include "layer_surfels.h"
+#include "splat_settings_panel.h"
+
+#include <common/GLExtensionsManager.h>
+#include <meshlab/glarea.h>
+
+#include <Eigen/Dense>
+
+namespace {
+
+// MeshLab's default colour for layers without per-vertex colour.
+const std::uint8_t kDefaultSplatColor[4] = {192, 192, 192, 255};
+
+// The splats are lit like MeshLab lights meshes: with its light 0 (a headlight by default).
+splat::Lighting lightingOfCurrentView()
+{
+    splat::Lighting lighting;
+    float position[4], ambient[4], diffuse[4];
+    glGetLightfv(GL_LIGHT0, GL_POSITION, position); // already in eye space
+    glGetLightfv(GL_LIGHT0, GL_AMBIENT, ambient);
+    glGetLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
+    if (position[0] != 0.0f || position[1] != 0.0f || position[2] != 0.0f)
+        std::copy(position, position + 3, lighting.towardsLight);
+    std::copy(ambient, ambient + 3, lighting.ambient);
+    std::copy(diffuse, diffuse + 3, lighting.diffuse);
+    return lighting;
+}
+
+} // namespace
+
+EllipseSplatRenderPlugin::EllipseSplatRenderPlugin() : action(new QAction("Ellipse Splatting", this))
+{
+    action->setToolTip("Perspective-correct elliptical splats blended in three passes (oriented point sets)");
+}
+
+EllipseSplatRenderPlugin::~EllipseSplatRenderPlugin() = default;
+
+QString EllipseSplatRenderPlugin::pluginName() const
+{
+    return "RenderEllipseSplat";
+}
+
+QList<QAction *> EllipseSplatRenderPlugin::actions()
+{
+    return {action};
+}
+
+void EllipseSplatRenderPlugin::Init(QAction *, MeshDocument &document,
+                                    MLSceneGLSharedDataContext::PerMeshRenderingDataMap &, GLArea *view)
+{
+    supported = false;
+    view->makeCurrent();
+    GLExtensionsManager::initializeGLextensions();
+    const std::string reason = splat::unsupportedReason();
+    if (!reason.empty()) {
+        document.Log.Log(GLLogStream::WARNING, reason);
+        return;
+    }
+    ViewResources resources;
+    try {
+        resources.renderer.reset(new splat::EllipseSplatRenderer);
+    } catch (const std::exception &error) {
+        document.Log.Log(GLLogStream::WARNING, std::string("Ellipse Splatting: ") + error.what());
+        return;
+    }
+    views[view] = std::move(resources);
+    supported = true;
+
+    if (panel == nullptr) {
+        panel = new SplatSettingsPanel(view->window());
+        connect(panel, &SplatSettingsPanel::changed, this, [this] {
+            for (auto &entry : views)
+                entry.first->update();
+        });
+        panel->move(view->mapToGlobal(QPoint(10, 10)));
+    }
+    panel->show();
+}
+
+void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
+                                      MLSceneGLSharedDataContext::PerMeshRenderingDataMap &, GLArea *view)
+{
+    auto found = views.find(view);
+    if (found == views.end() || view->mvc() == nullptr || panel == nullptr)
+        return;
+    ViewResources &resources = found->second;
+    MLSceneGLSharedDataContext *shared = view->mvc()->sharedDataContext();
+    if (shared == nullptr)
+        return;
+
+    Eigen::Matrix4f viewModelView, projection;
+    glGetFloatv(GL_MODELVIEW_MATRIX, viewModelView.data());
+    glGetFloatv(GL_PROJECTION_MATRIX, projection.data());
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+
+    std::vector<splat::SplatDrawItem> items;
+    std::set<int> liveLayers;
+    for (MeshModel *layer : document.meshList) {
+        liveLayers.insert(layer->id());
+        if (!view->meshVisibilityMap[layer->id()])
+            continue;
+        const splat::SplatCloud *cloud = nullptr;
+        if (layer->cm.fn > 0)
+            logOnce(document, *layer, "is a triangle mesh: drawn as usual");
+        else if (layer->cm.vn > 0 && !splat::layerHasNormals(*layer))
+            logOnce(document, *layer,
+                    "has no normals: drawn as usual (Filters > Normals > Compute normals for point sets)");
+        else if (layer->cm.vn > 0)
+            cloud = cloudOf(resources, *layer);
+        if (cloud == nullptr) {
+            shared->setMeshTransformationMatrix(layer->id(), layer->cm.Tr);
+            shared->draw(layer->id(), view->context());
+            continue;
+        }
+        // vcg matrices are row-major; the layer's own transformation applies first.
+        const Eigen::Matrix4f layerTransform = Eigen::Map<const Eigen::Matrix<float, 4, 4, Eigen::RowMajor>>(
+            layer->cm.Tr.V());
+        splat::SplatDrawItem item{cloud, {}};
+        Eigen::Map<Eigen::Matrix4f>(item.modelView) = viewModelView * layerTransform;
+        items.push_back(item);
+    }
+    for (auto it = resources.clouds.begin(); it != resources.clouds.end();)
+        it = liveLayers.count(it->first) ? std::next(it) : resources.clouds.erase(it);
+
+    try {
+        resources.renderer->render(items, projection.data(), {viewport[0], viewport[1], viewport[2], viewport[3]},
+                                   lightingOfCurrentView(), panel->settings());
+    } catch (const std::exception &error) {
+        logOnce(document, *document.meshList.front(), QString("cannot be splatted: ") + error.what());
+    }
+}
+
+void EllipseSplatRenderPlugin::Finalize(QAction *, MeshDocument *, GLArea *view)
+{
+    auto found = views.find(view);
+    if (found != views.end()) {
+        view->makeCurrent(); // the GL objects must be deleted in their context
+        views.erase(found);
+    }
+    if (views.empty() && panel != nullptr) {
+        panel->close();
+        panel->deleteLater();
+        panel = nullptr;
+    }
+    loggedMessages.clear();
+}
+
+const splat::SplatCloud *EllipseSplatRenderPlugin::cloudOf(ViewResources &view, const MeshModel &layer)
+{
+    const int neighbours = panel->neighbours();
+    const std::uint64_t fingerprint = splat::layerFingerprint(layer, neighbours);
+    CachedCloud &cached = view.clouds[layer.id()];
+    if (!cached.cloud || cached.fingerprint != fingerprint) {
+        cached.cloud.reset(new splat::SplatCloud(splat::surfelsOfLayer(layer, neighbours), kDefaultSplatColor));
+        cached.fingerprint = fingerprint;
+    }
+    return cached.cloud.get();
+}
+
+void EllipseSplatRenderPlugin::logOnce(MeshDocument &document, const MeshModel &layer, const QString &message)
+{
+    if (loggedMessages.insert({layer.id(), message}).second)
+        document.Log.Log(GLLogStream::WARNING, QString("Ellipse Splatting: layer '%1' %2").arg(layer.label(), message));
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(EllipseSplatRenderPlugin)

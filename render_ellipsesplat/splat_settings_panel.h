@@ -1,0 +1,32 @@
+#pragma once
+// The floating panel that comes up with "Ellipse Splatting": splat mode, splat scale, ε and
+// the neighbour count used to size circular splats of layers without ellipse attributes.
+
+#include "ellipse_splat_renderer.h"
+
+#include <QDockWidget>
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QSpinBox;
+
+class SplatSettingsPanel : public QDockWidget
+{
+    Q_OBJECT
+public:
+    explicit SplatSettingsPanel(QWidget *parent);
+
+    splat::SplatSettings settings() const;
+    int neighbours() const;
+
+signals:
+    void changed();
+
+private:
+    QComboBox *mode;
+    QDoubleSpinBox *splatScale;
+    QDoubleSpinBox *depthOffset;
+    QSpinBox *neighbourCount;
+    QCheckBox *cullBackFaces;
+};

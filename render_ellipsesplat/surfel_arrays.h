@@ -1,0 +1,35 @@
+#pragma once
+// Surfels as plain arrays: what the renderer uploads, independent of MeshLab's mesh types.
+// The ellipse of surfel i is { p + x·E + y·F : x² + y² ≤ 1 } (docs/surfel_format.md).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace splat {
+
+struct SurfelArrays
+{
+    std::vector<float> positions; // x y z per surfel
+    std::vector<float> normals;   // unit normal per surfel (orients the splat and shades it)
+    std::vector<float> majorAxes; // semi-axis vector E per surfel, tangent to the normal
+    std::vector<float> minorAxes; // semi-axis vector F per surfel, tangent, orthogonal to E
+    std::vector<std::uint8_t> colors; // r g b a per surfel; empty: every splat gets the default colour
+
+    std::size_t size() const { return positions.size() / 3; }
+    bool hasColors() const { return colors.size() == 4 * size(); }
+};
+
+// Radius of each point's circular splat: the distance to its k-th nearest neighbour (itself
+// excluded), so neighbouring splats overlap on a uniformly sampled surface (for k = 8 the
+// radius is about 1.5 times the sample spacing). A lone point gets radius 0.
+std::vector<float> nearestNeighbourRadii(const std::vector<float> &positions, int k);
+
+// The number of neighbours nearestNeighbourRadii uses when a caller has no better idea.
+constexpr int kDefaultSplatNeighbours = 8;
+
+// Fills majorAxes/minorAxes with circles of the given radii in the plane orthogonal to each
+// normal (E × F points along the normal).
+void assignCircularFrames(SurfelArrays &surfels, const std::vector<float> &radii);
+
+} // namespace splat
