@@ -1,11 +1,11 @@
 #include "io_surfel.h"
 
 #include "surfel_file.h"
-#include "surfel_mesh.h"
+#include "surfel_records_mesh.h"
 
 #include <QFile>
 
-using gaussphere::Surfel;
+using surfel_io::SurfelRecord;
 
 namespace {
 
@@ -49,9 +49,9 @@ bool SurfelIOPlugin::open(const QString& /*format*/, const QString& fileName, Me
                           QWidget* /*parent*/)
 {
 	if (cb != nullptr) (*cb)(0, "Loading surfels...");
-	std::vector<Surfel> surfels;
+	std::vector<SurfelRecord> surfels;
 	std::string error;
-	if (!gaussphere::readSurfelFile(localPath(fileName), surfels, error)) {
+	if (!surfel_io::readSurfelFile(localPath(fileName), surfels, error)) {
 		errorMessage = QString("Error encountered while loading file:\n\"%1\"\n\nError details: %2")
 		                   .arg(fileName, QString::fromStdString(error));
 		return false;
@@ -60,9 +60,9 @@ bool SurfelIOPlugin::open(const QString& /*format*/, const QString& fileName, Me
 	// The normal flag also keeps MeshLab from recomputing normals of this face-less layer.
 	mask = kSurfelComponents;
 	m.Enable(mask);
-	gaussphere::surfelsToMesh(surfels, m.cm);
+	surfel_io::addRecordsToMesh(surfels, m.cm);
 	vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
-	if (!surfels.empty() && !gaussphere::hasEllipseFrames(surfels))
+	if (!surfels.empty() && !surfel_io::hasEllipseFrames(surfels))
 		Log("%s: every ellipse axis is zero, the layer gets no ellipse attributes",
 		    qUtf8Printable(fileName));
 	if (cb != nullptr) (*cb)(100, "Done");
@@ -74,14 +74,14 @@ bool SurfelIOPlugin::save(const QString& /*format*/, const QString& fileName, Me
                           vcg::CallBackPos* cb, QWidget* /*parent*/)
 {
 	if (cb != nullptr) (*cb)(0, "Saving surfels...");
-	const std::vector<Surfel> surfels = gaussphere::surfelsFromMesh(m.cm);
+	const std::vector<SurfelRecord> surfels = surfel_io::recordsFromMesh(m.cm);
 	std::string error;
-	if (!gaussphere::writeSurfelFile(localPath(fileName), surfels, error)) {
+	if (!surfel_io::writeSurfelFile(localPath(fileName), surfels, error)) {
 		errorMessage = QString("Error encountered while exporting file %1:\n%2")
 		                   .arg(fileName, QString::fromStdString(error));
 		return false;
 	}
-	if (!surfels.empty() && !gaussphere::hasEllipseFrames(surfels))
+	if (!surfels.empty() && !surfel_io::hasEllipseFrames(surfels))
 		Log("%s: the layer has no ellipse frames, written with zero axes",
 		    qUtf8Printable(fileName));
 	if (cb != nullptr) (*cb)(100, "Done");

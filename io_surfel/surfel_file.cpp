@@ -9,7 +9,7 @@
 #include <ostream>
 #include <sstream>
 
-namespace gaussphere {
+namespace surfel_io {
 namespace {
 
 static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4,
@@ -23,8 +23,8 @@ constexpr const char* kFloatPropertyNames[kFloatPropertyCount] = {
     "major_x", "major_y", "major_z", "minor_x", "minor_y", "minor_z", "quality"};
 constexpr const char* kColorPropertyNames[kColorPropertyCount] = {"red", "green", "blue", "alpha"};
 
-// Where the float properties of a record live in a Surfel, in kFloatPropertyNames' order.
-std::array<float*, kFloatPropertyCount> floatFields(Surfel& s) {
+// Where the float properties of a record live in a SurfelRecord, in kFloatPropertyNames' order.
+std::array<float*, kFloatPropertyCount> floatFields(SurfelRecord& s) {
   return {{&s.position[0], &s.position[1], &s.position[2], &s.normal[0], &s.normal[1],
            &s.normal[2], &s.radius, &s.majorAxis[0], &s.majorAxis[1], &s.majorAxis[2],
            &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality}};
@@ -45,7 +45,7 @@ float loadFloat(const unsigned char* in) {
   return value;
 }
 
-void encode(Surfel surfel, unsigned char* out) {
+void encode(SurfelRecord surfel, unsigned char* out) {
   for (float* field : floatFields(surfel)) {
     storeFloat(*field, out);
     out += 4;
@@ -53,8 +53,8 @@ void encode(Surfel surfel, unsigned char* out) {
   std::copy(surfel.color.begin(), surfel.color.end(), out);
 }
 
-Surfel decode(const unsigned char* in) {
-  Surfel surfel;
+SurfelRecord decode(const unsigned char* in) {
+  SurfelRecord surfel;
   for (float* field : floatFields(surfel)) {
     *field = loadFloat(in);
     in += 4;
@@ -190,13 +190,13 @@ bool remainingBytes(std::istream& in, std::uint64_t& bytes) {
 
 }  // namespace
 
-bool operator==(const Surfel& a, const Surfel& b) {
+bool operator==(const SurfelRecord& a, const SurfelRecord& b) {
   return a.position == b.position && a.normal == b.normal && a.radius == b.radius &&
          a.majorAxis == b.majorAxis && a.minorAxis == b.minorAxis && a.quality == b.quality &&
          a.color == b.color;
 }
 
-bool readSurfels(std::istream& in, std::vector<Surfel>& surfels, std::string& error) {
+bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error) {
   surfels.clear();
   std::uint64_t count = 0;
   if (!readHeader(in, count, error)) return false;
@@ -225,14 +225,14 @@ bool readSurfels(std::istream& in, std::vector<Surfel>& surfels, std::string& er
   return true;
 }
 
-bool readSurfelFile(const std::string& path, std::vector<Surfel>& surfels, std::string& error) {
+bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels, std::string& error) {
   surfels.clear();
   std::ifstream in(path, std::ios::binary);
   if (!in) return fail(error, "cannot open '" + path + "': " + std::strerror(errno));
   return readSurfels(in, surfels, error);
 }
 
-bool writeSurfels(std::ostream& out, const std::vector<Surfel>& surfels, std::string& error) {
+bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error) {
   out << "ply\nformat binary_little_endian 1.0\ncomment " << kSurfelFileMagic << "\n"
       << "element vertex " << surfels.size() << "\n";
   for (const char* name : kFloatPropertyNames) out << "property float " << name << "\n";
@@ -249,7 +249,7 @@ bool writeSurfels(std::ostream& out, const std::vector<Surfel>& surfels, std::st
   return true;
 }
 
-bool writeSurfelFile(const std::string& path, const std::vector<Surfel>& surfels,
+bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) return fail(error, "cannot open '" + path + "' for writing: " + std::strerror(errno));
@@ -259,11 +259,11 @@ bool writeSurfelFile(const std::string& path, const std::vector<Surfel>& surfels
   return true;
 }
 
-bool hasEllipseFrames(const std::vector<Surfel>& surfels) {
+bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels) {
   const auto isZero = [](const Vec3f& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; };
-  return std::any_of(surfels.begin(), surfels.end(), [&](const Surfel& s) {
+  return std::any_of(surfels.begin(), surfels.end(), [&](const SurfelRecord& s) {
     return !isZero(s.majorAxis) || !isZero(s.minorAxis);
   });
 }
 
-}  // namespace gaussphere
+}  // namespace surfel_io

@@ -2,7 +2,7 @@
 // PLY file with one `vertex` element whose properties are, in this order,
 //   float x y z nx ny nz radius major_x major_y major_z minor_x minor_y minor_z quality
 //   uchar red green blue alpha
-// No Qt, no vcg: the MeshLab plugin, tests and tools share this code (surfel_mesh.h
+// No Qt, no vcg: the MeshLab plugin, tests and tools share this code (surfel_records_mesh.h
 // converts to and from vcg meshes).
 #ifndef GAUSSPHERE_IO_SURFEL_SURFEL_FILE_H
 #define GAUSSPHERE_IO_SURFEL_SURFEL_FILE_H
@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-namespace gaussphere {
+namespace surfel_io {
 
 using Vec3f = std::array<float, 3>;
 
 // One record of a `.surfel` file. The ellipse is { position + x*majorAxis + y*minorAxis :
 // x^2 + y^2 <= 1 }; a surfel written from a layer without ellipse frames has zero axes.
-struct Surfel {
+struct SurfelRecord {
   Vec3f position{};
   Vec3f normal{};
   float radius = 0;
@@ -29,8 +29,8 @@ struct Surfel {
   std::array<std::uint8_t, 4> color{};  // red, green, blue, alpha
 };
 
-bool operator==(const Surfel& a, const Surfel& b);
-inline bool operator!=(const Surfel& a, const Surfel& b) { return !(a == b); }
+bool operator==(const SurfelRecord& a, const SurfelRecord& b);
+inline bool operator!=(const SurfelRecord& a, const SurfelRecord& b) { return !(a == b); }
 
 // The `comment` line that marks a PLY file as a `.surfel` file of this version.
 constexpr const char* kSurfelFileMagic = "gaussphere-surfel 1";
@@ -38,17 +38,17 @@ constexpr const char* kSurfelFileMagic = "gaussphere-surfel 1";
 // Reading is strict: anything but the exact layout above (extra `comment` and `obj_info`
 // lines aside), a data section shorter or longer than the header announces, or an
 // unreadable file fails with a one-line reason in `error`; `surfels` is then left empty.
-bool readSurfels(std::istream& in, std::vector<Surfel>& surfels, std::string& error);
-bool readSurfelFile(const std::string& path, std::vector<Surfel>& surfels, std::string& error);
+bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error);
+bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels, std::string& error);
 
-bool writeSurfels(std::ostream& out, const std::vector<Surfel>& surfels, std::string& error);
-bool writeSurfelFile(const std::string& path, const std::vector<Surfel>& surfels,
+bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
+bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error);
 
 // True when some surfel has a non-zero axis. A file without any is one written from a layer
 // without ellipse frames, and loads without the ellipse attributes.
-bool hasEllipseFrames(const std::vector<Surfel>& surfels);
+bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels);
 
-}  // namespace gaussphere
+}  // namespace surfel_io
 
 #endif

@@ -1,21 +1,19 @@
 // Converts between `.surfel` records (surfel_file.h) and a vcg mesh whose vertices carry
-// the surfel attributes of docs/surfel_format.md. Header-only, templated on the mesh type,
-// so MeshLab's CMeshO (io_surfel plugin) and the test and tool meshes share it.
-#ifndef GAUSSPHERE_IO_SURFEL_SURFEL_MESH_H
-#define GAUSSPHERE_IO_SURFEL_SURFEL_MESH_H
+// the surfel attributes of docs/surfel_format.md, the ellipse axes being the per-vertex
+// attributes (of type MeshType::CoordType, Point3m in MeshLab) named in
+// vcg_ext/gaussphere/surfel_mesh.h. Header-only, templated on the mesh type, so MeshLab's
+// CMeshO (io_surfel plugin) and the test and tool meshes share it.
+#ifndef GAUSSPHERE_IO_SURFEL_SURFEL_RECORDS_MESH_H
+#define GAUSSPHERE_IO_SURFEL_SURFEL_RECORDS_MESH_H
 
 #include "surfel_file.h"
 
 #include <vcg/complex/complex.h>
+#include <vcg_ext/gaussphere/surfel_mesh.h>
 
 #include <vector>
 
-namespace gaussphere {
-
-// Per-vertex attributes of type MeshType::CoordType (Point3m in MeshLab) holding the ellipse
-// semi-axis vectors.
-constexpr const char* kEllipseMajorAxisAttribute = "EllipseMajorAxis";
-constexpr const char* kEllipseMinorAxisAttribute = "EllipseMinorAxis";
+namespace surfel_io {
 
 namespace detail {
 
@@ -36,11 +34,13 @@ Point3 toPoint3(const Vec3f& v) {
 // two attributes are looked up independently); faces and edges are not part of the format.
 // Non-const: vcg looks attributes up through a mutable mesh.
 template <class MeshType>
-std::vector<Surfel> surfelsFromMesh(MeshType& mesh) {
+std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
   using Point3 = typename MeshType::CoordType;
   using Allocator = vcg::tri::Allocator<MeshType>;
-  auto major = Allocator::template FindPerVertexAttribute<Point3>(mesh, kEllipseMajorAxisAttribute);
-  auto minor = Allocator::template FindPerVertexAttribute<Point3>(mesh, kEllipseMinorAxisAttribute);
+  using vcg::gaussphere::kMajorAxisAttribute;
+  using vcg::gaussphere::kMinorAxisAttribute;
+  auto major = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
+  auto minor = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   const bool hasMajor = Allocator::IsValidHandle(mesh, major);
   const bool hasMinor = Allocator::IsValidHandle(mesh, minor);
   const bool hasNormal = vcg::tri::HasPerVertexNormal(mesh);
@@ -48,11 +48,11 @@ std::vector<Surfel> surfelsFromMesh(MeshType& mesh) {
   const bool hasQuality = vcg::tri::HasPerVertexQuality(mesh);
   const bool hasColor = vcg::tri::HasPerVertexColor(mesh);
 
-  std::vector<Surfel> surfels;
+  std::vector<SurfelRecord> surfels;
   surfels.reserve(mesh.vn);
   for (auto v = mesh.vert.begin(); v != mesh.vert.end(); ++v) {
     if (v->IsD()) continue;
-    Surfel s;
+    SurfelRecord s;
     s.position = detail::toVec3f(v->cP());
     if (hasNormal) s.normal = detail::toVec3f(v->cN());
     if (hasRadius) s.radius = float(v->cR());
@@ -72,7 +72,7 @@ std::vector<Surfel> surfelsFromMesh(MeshType& mesh) {
 // (hasEllipseFrames) and neither otherwise: a file written from a layer without ellipse
 // frames reads back without them, and none are synthesized from the radius.
 template <class MeshType>
-void surfelsToMesh(const std::vector<Surfel>& surfels, MeshType& mesh) {
+void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) {
   using Point3 = typename MeshType::CoordType;
   using Allocator = vcg::tri::Allocator<MeshType>;
   const bool hasNormal = vcg::tri::HasPerVertexNormal(mesh);
@@ -85,10 +85,12 @@ void surfelsToMesh(const std::vector<Surfel>& surfels, MeshType& mesh) {
   typename MeshType::template PerVertexAttributeHandle<Point3> major, minor;
   const bool withFrames = hasEllipseFrames(surfels);
   if (withFrames) {
-    major = Allocator::template GetPerVertexAttribute<Point3>(mesh, kEllipseMajorAxisAttribute);
-    minor = Allocator::template GetPerVertexAttribute<Point3>(mesh, kEllipseMinorAxisAttribute);
+    using vcg::gaussphere::kMajorAxisAttribute;
+    using vcg::gaussphere::kMinorAxisAttribute;
+    major = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
+    minor = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   }
-  for (const Surfel& s : surfels) {
+  for (const SurfelRecord& s : surfels) {
     v->P() = detail::toPoint3<Point3>(s.position);
     if (hasNormal) v->N() = detail::toPoint3<typename MeshType::VertexType::NormalType>(s.normal);
     if (hasRadius) v->R() = s.radius;
@@ -102,6 +104,6 @@ void surfelsToMesh(const std::vector<Surfel>& surfels, MeshType& mesh) {
   }
 }
 
-}  // namespace gaussphere
+}  // namespace surfel_io
 
 #endif

@@ -1,0 +1,191 @@
+// The .surfel reader and writer: exact round trips, the documented header, and refusal
+// (false and a reason, never a crash) of every truncated, foreign or garbage input.
+#include "surfel_fixture.h"
+
+#include <surfel_file.h>
+
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <sstream>
+
+namespace {
+
+using surfel_io::SurfelRecord;
+
+const char* const kHeader =
+    "ply\n"
+    "format binary_little_endian 1.0\n"
+    "comment gaussphere-surfel 1\n"
+    "element vertex 3\n"
+    "property float x\nproperty float y\nproperty float z\n"
+    "property float nx\nproperty float ny\nproperty float nz\n"
+    "property float radius\n"
+    "property float major_x\nproperty float major_y\nproperty float major_z\n"
+    "property float minor_x\nproperty float minor_y\nproperty float minor_z\n"
+    "property float quality\n"
+    "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+    "end_header\n";
+
+std::string encode(const std::vector<SurfelRecord>& surfels) {
+  std::ostringstream out;
+  std::string error;
+  EXPECT_TRUE(surfel_io::writeSurfels(out, surfels, error)) << error;
+  return out.str();
+}
+
+bool decode(const std::string& bytes, std::vector<SurfelRecord>& surfels, std::string& error) {
+  std::istringstream in(bytes);
+  return surfel_io::readSurfels(in, surfels, error);
+}
+
+// The bytes of a valid three-surfel file with `from` replaced by `to` in its header.
+std::string withHeaderEdit(const std::string& from, const std::string& to) {
+  std::string bytes = encode(syntheticSurfels(3));
+  const std::size_t at = bytes.find(from);
+  EXPECT_LT(at, std::string(kHeader).size()) << from;
+  return bytes.replace(at, from.size(), to);
+}
+
+// Expects `bytes` to be refused with a reason containing `reason`.
+void expectRefused(const std::string& bytes, const std::string& reason) {
+  std::vector<SurfelRecord> surfels(1);
+  std::string error;
+  EXPECT_FALSE(decode(bytes, surfels, error));
+  EXPECT_NE(error.find(reason), std::string::npos) << "error: " << error;
+  EXPECT_TRUE(surfels.empty());
+}
+
+TEST(SurfelFile, WritesTheDocumentedHeaderAnd60BytesPerSurfel) {
+  const std::string bytes = encode(syntheticSurfels(3));
+  ASSERT_EQ(bytes.substr(0, std::string(kHeader).size()), kHeader);
+  EXPECT_EQ(bytes.size(), std::string(kHeader).size() + 3 * 60);
+}
+
+TEST(SurfelFile, StoresLittleEndianFloatsAndBytesInPropertyOrder) {
+  SurfelRecord s;
+  s.position = {{1.0f, 0, 0}};
+  s.color = {{1, 2, 3, 4}};
+  const std::string bytes = encode({s});
+  const std::string data = bytes.substr(bytes.size() - 60);
+  EXPECT_EQ(data.substr(0, 4), std::string("\x00\x00\x80\x3f", 4));  // 1.0f
+  EXPECT_EQ(data.substr(56), std::string("\x01\x02\x03\x04", 4));
+}
+
+TEST(SurfelFile, RoundTripThroughAFileIsBitExact) {
+  std::vector<SurfelRecord> surfels = syntheticSurfels(5000);  // more than one chunk
+  SurfelRecord extremes;
+  extremes.position = {{-0.0f, FLT_MAX, -FLT_MAX}};
+  extremes.normal = {{FLT_MIN / 4, FLT_EPSILON, std::nextafter(1.0f, 2.0f)}};
+  extremes.radius = FLT_MIN;
+  extremes.quality = 16777216.0f;
+  extremes.color = {{0, 255, 128, 0}};
+  surfels.push_back(extremes);
+
+  const std::string path = testing::TempDir() + "surfel_file_roundtrip.surfel";
+  std::string error;
+  ASSERT_TRUE(surfel_io::writeSurfelFile(path, surfels, error)) << error;
+  std::vector<SurfelRecord> read;
+  ASSERT_TRUE(surfel_io::readSurfelFile(path, read, error)) << error;
+  EXPECT_EQ(read, surfels);
+  EXPECT_EQ(encode(read), encode(surfels));  // also tells -0 from +0
+}
+
+TEST(SurfelFile, FileWithoutSurfelsReadsAsEmpty) {
+  std::vector<SurfelRecord> surfels(2);
+  std::string error;
+  ASSERT_TRUE(decode(encode({}), surfels, error)) << error;
+  EXPECT_TRUE(surfels.empty());
+}
+
+TEST(SurfelFile, RefusesEveryTruncation) {
+  const std::string bytes = encode(syntheticSurfels(3));
+  for (std::size_t size = 0; size < bytes.size(); ++size) {
+    SCOPED_TRACE("first " + std::to_string(size) + " bytes");
+    std::vector<SurfelRecord> surfels;
+    std::string error;
+    EXPECT_FALSE(decode(bytes.substr(0, size), surfels, error));
+    EXPECT_FALSE(error.empty());
+    EXPECT_TRUE(surfels.empty());
+  }
+  expectRefused(bytes.substr(0, bytes.size() - 1), "truncated file");
+}
+
+TEST(SurfelFile, RefusesDataAfterTheLastSurfel) {
+  expectRefused(encode(syntheticSurfels(3)) + "\n", "1 unexpected bytes after the last surfel");
+}
+
+TEST(SurfelFile, RefusesGarbage) {
+  expectRefused("", "not a PLY file");
+  expectRefused(std::string(5000, '\xaa'), "not a PLY file");
+  expectRefused("ply\n" + std::string(100000, '\xaa'), "no 'end_header'");
+  expectRefused("solid cube\nfacet normal 0 0 1\n", "not a PLY file");
+}
+
+TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
+  expectRefused(withHeaderEdit("binary_little_endian", "ascii"), "unsupported PLY encoding");
+  expectRefused(withHeaderEdit("binary_little_endian", "binary_big_endian"),
+                "unsupported PLY encoding");
+  expectRefused(withHeaderEdit("format binary_little_endian 1.0\n", ""), "no 'format' line");
+  expectRefused(withHeaderEdit("comment gaussphere-surfel 1\n", ""), "not a .surfel file");
+  expectRefused(withHeaderEdit("gaussphere-surfel 1", "gaussphere-surfel 2"),
+                "unsupported .surfel version");
+  expectRefused(withHeaderEdit("end_header", "element face 0\nend_header"),
+                "unexpected 'element face 0'");
+  expectRefused(withHeaderEdit("element vertex 3\n", ""), "unexpected 'property float x'");
+  expectRefused(withHeaderEdit("vertex 3", "vertex three"), "invalid vertex count");
+  expectRefused(withHeaderEdit("vertex 3", "vertex -3"), "invalid vertex count");
+  expectRefused(withHeaderEdit("float x", "double x"), "unexpected 'property double x'");
+  expectRefused(withHeaderEdit("property float y\nproperty float z",
+                               "property float z\nproperty float y"),
+                "unexpected 'property float z' (vertex property 2");
+  expectRefused(withHeaderEdit("uchar alpha", "list uchar int vertex_indices"),
+                "unexpected 'property list");
+  expectRefused(withHeaderEdit("property uchar alpha\n", ""), "has 17 properties instead of 18");
+  expectRefused(withHeaderEdit("end_header", "property uchar extra\nend_header"),
+                "(vertex property 19");
+  expectRefused(withHeaderEdit("end_header", "made_up keyword\nend_header"),
+                "unknown PLY header line");
+}
+
+TEST(SurfelFile, RefusesACountTheDataCannotHoldWithoutAllocatingIt) {
+  expectRefused(withHeaderEdit("vertex 3", "vertex 18446744073709551615"), "truncated file");
+  expectRefused(withHeaderEdit("vertex 3", "vertex 1000000000000000000000"),
+                "invalid vertex count");
+}
+
+TEST(SurfelFile, AcceptsWhatOtherPlyWritersAdd) {
+  std::string bytes = withHeaderEdit("comment gaussphere-surfel 1\n",
+                                     "obj_info from a tool\ncomment gaussphere-surfel 1\n"
+                                     "comment another comment\n");
+  bytes.replace(bytes.find("float x"), 7, "float32 x");
+  bytes.replace(bytes.find("uchar red"), 9, "uint8 red");
+  const std::size_t headerEnd = bytes.find("end_header\n") + 11;
+  std::string crlf;
+  for (char c : bytes.substr(0, headerEnd)) crlf += c == '\n' ? "\r\n" : std::string(1, c);
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  ASSERT_TRUE(decode(crlf + bytes.substr(headerEnd), surfels, error)) << error;
+  EXPECT_EQ(surfels, syntheticSurfels(3));
+}
+
+TEST(SurfelFile, ReportsFilesThatCannotBeOpened) {
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  EXPECT_FALSE(surfel_io::readSurfelFile("/nonexistent/in.surfel", surfels, error));
+  EXPECT_NE(error.find("cannot open '/nonexistent/in.surfel'"), std::string::npos) << error;
+  EXPECT_FALSE(surfel_io::writeSurfelFile("/nonexistent/out.surfel", surfels, error));
+  EXPECT_NE(error.find("cannot open '/nonexistent/out.surfel' for writing"), std::string::npos)
+      << error;
+}
+
+TEST(SurfelFile, EllipseFramesAreAnyNonZeroAxis) {
+  std::vector<SurfelRecord> surfels(3);
+  EXPECT_FALSE(surfel_io::hasEllipseFrames(surfels));
+  surfels[2].minorAxis[1] = 1e-30f;
+  EXPECT_TRUE(surfel_io::hasEllipseFrames(surfels));
+  EXPECT_TRUE(surfel_io::hasEllipseFrames(syntheticSurfels(1)));
+}
+
+}  // namespace
