@@ -98,21 +98,27 @@ bool FilterGaussSpherePlugin::applyFilter(QAction *filter, MeshDocument &md, con
     }
 }
 
+// meshlabserver does not print errorMsg(), only the log: say it in both.
+bool FilterGaussSpherePlugin::fail(const QString &message)
+{
+    errorMessage = message;
+    Log(GLLogStream::WARNING, "Gaussian sphere resampling failed: %s", qUtf8Printable(message));
+    return false;
+}
+
 bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
 {
     MeshModel *input = md.mm();
     if (input == nullptr || input->cm.vn == 0) {
-        errorMessage = "The current layer is empty: there are no points to resample.";
-        return false;
+        return fail("The current layer is empty: there are no points to resample.");
     }
     CMeshO &in = input->cm;
     int withNormal = 0;
     for (const CVertexO &v : in.vert)
         if (!v.IsD() && v.cN().SquaredNorm() > 0 && std::isfinite(v.cN().SquaredNorm())) ++withNormal;
     if (withNormal == 0) {
-        errorMessage = "The layer has no normals (all are zero or invalid). Compute them first with "
-                       "Filters > Normals, Curvatures and Orientation > Compute normals for point sets.";
-        return false;
+        return fail("The layer has no normals (all are zero or invalid). Compute them first with "
+                       "Filters > Normals, Curvatures and Orientation > Compute normals for point sets.");
     }
 
     gs::ResamplingParams param;
@@ -126,19 +132,16 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     param.maxIterations = par.getInt("MaxIterations");
     const std::string invalid = param.Validate();
     if (!invalid.empty()) {
-        errorMessage = QString::fromStdString(invalid) + ".";
-        return false;
+        return fail(QString::fromStdString(invalid) + ".");
     }
 
     gs::ResamplingResult result;
     try {
         result = gs::ResamplePointSet(in, param, cb);
     } catch (const gs::ResamplingCancelled &) {
-        errorMessage = "Resampling was cancelled.";
-        return false;
+        return fail("Resampling was cancelled.");
     } catch (const std::exception &e) {
-        errorMessage = QString("Cannot resample: %1.").arg(e.what());
-        return false;
+        return fail(QString("Cannot resample: %1.").arg(e.what()));
     }
 
     auto representative = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<int>(in, gs::kRepresentativeAttribute);

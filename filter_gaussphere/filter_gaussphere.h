@@ -28,6 +28,7 @@ public:
     bool applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb) override;
 
 private:
+    bool fail(const QString &message);
     bool resample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
 };
 

@@ -24,7 +24,10 @@ struct NeighborGraph
     int stride = 0;                 ///< k: slots per point
     std::vector<int> adjacency;     ///< neighbours of i in adjacency[i*stride, i*stride + count[i])
     std::vector<std::uint8_t> count;
-    std::vector<float> spacing;     ///< mean distance to the (up to) 6 nearest neighbours
+    /// Mean distance to the (up to) 6 nearest neighbours at a non-zero distance; for a
+    /// point whose k neighbours all coincide with it, the median spacing of the others
+    /// (or 1e-3 when every point coincides: there is no scale to read).
+    std::vector<float> spacing;
 
     int Size() const { return int(count.size()); }
     const int *begin(int i) const { return adjacency.data() + size_t(i) * stride; }
@@ -36,6 +39,22 @@ struct AdaptiveNeighborParams
     int k = 16;               ///< neighbours examined per point (clamped to [1, 255] and N-1)
     double coneChord = 0.42;  ///< keep q when |n_p - n_q| <= coneChord, i.e. <n_p,n_q> >= 1 - chord^2/2
 };
+
+/// Replaces zero spacings (points with only coincident neighbours) by the median of the
+/// positive ones, or by 1e-3 if there are none.
+inline void FillUnknownSpacing(std::vector<float> &spacing)
+{
+    std::vector<float> known;
+    for (float s : spacing)
+        if (s > 0) known.push_back(s);
+    float fallback = 1e-3f;
+    if (!known.empty()) {
+        std::nth_element(known.begin(), known.begin() + known.size() / 2, known.end());
+        fallback = known[known.size() / 2];
+    }
+    for (float &s : spacing)
+        if (!(s > 0)) s = fallback;
+}
 
 /// Builds N(p) for unit normals `normals` at `points` (same size, finite).
 /// Postcondition: graph.Size() == points.size(); every kept neighbour j != i is among
@@ -63,9 +82,10 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
         for (int s = 0; s < n; ++s) {
             const int i = order[s]; // leaf order: consecutive queries touch the same leaves
             const int found = tree.KNearest(points[i], g.stride, i, idx.data(), d2.data());
-            const int near = std::min(found, 6);
+            int near = 0;
             float sum = 0;
-            for (int t = 0; t < near; ++t) sum += std::sqrt(d2[t]);
+            for (int t = 0; t < found && near < 6; ++t)
+                if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
             g.spacing[i] = near > 0 ? sum / near : 0.f;
             int *out = g.adjacency.data() + size_t(i) * g.stride;
             int kept = 0;
@@ -74,6 +94,7 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
             g.count[i] = std::uint8_t(kept);
         }
     }
+    FillUnknownSpacing(g.spacing);
     return g;
 }
 

@@ -1,0 +1,18 @@
+# The shipped bunny through the shipped level-8 script: a .surfel with a sensible count,
+# unit normals, radii > 0 and ellipse frames that survive the batch run and a reload; a
+# plain PLY with normals and radii next to it.
+source "$E2E_COMMON"
+source "$FILTER_TESTS_DIR/lib.sh"
+points=34834
+count=$(resample "$SAMPLE_DIR/bunny.ply" bunny.surfel "$SAMPLE_DIR/resample_level8.mlx")
+echo "bunny: $count surfels"
+"$SURFEL_CHECK" bunny.surfel --min-count $((points / 10)) --max-count $((points * 3 / 10)) \
+  --require-ellipses --quality-sum $points
+# Reload the result and save it again: the ellipses survive.
+"$RUN_MESHLABSERVER" -i bunny.surfel -o reloaded.surfel >reload.log 2>&1
+cmp bunny.surfel reloaded.surfel
+grep -q "Gaussian sphere resampling time:" bunny.surfel.log
+# Colouring the input by cluster works from a script too.
+"$RUN_MESHLABSERVER" -i "$SAMPLE_DIR/bunny.ply" -s "$SAMPLE_DIR/resample_colorize.mlx" \
+  -o coloured.surfel >coloured.log 2>&1
+"$SURFEL_CHECK" coloured.surfel --count "$count" --require-ellipses
