@@ -3,6 +3,7 @@
 //   gsresample INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]
 //              [--min-split S] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
+//              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL]
 //
 // Writes the surfels as a PLY point set with normals and radius (the ellipse axes
 // are not part of a standard PLY; use MeshLab with io_surfel for .surfel files) and
@@ -25,7 +26,7 @@ int main(int argc, char **argv)
     if (argc < 3) {
         std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]"
                              " [--min-split S] [--iterations I] [--base octahedron|icosahedron]"
-                             " [--reference seed|current] [--order dfs|bfs]\n", argv[0]);
+                             " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION]\n", argv[0]);
         return 2;
     }
     ResamplingParams param;
@@ -37,6 +38,8 @@ int main(int argc, char **argv)
         else if (key == "--threshold") param.normalizationThreshold = std::stod(value);
         else if (key == "--min-split") param.minSplitSize = std::stoi(value);
         else if (key == "--iterations") param.maxIterations = std::stoi(value);
+        else if (key == "--target") param.targetCount = std::stoi(value);
+        else if (key == "--max-error") param.maxErrorFraction = std::stod(value);
         else if (key == "--base") param.base = value == "icosahedron" ? BasePolyhedron::Icosahedron : BasePolyhedron::Octahedron;
         else if (key == "--reference") param.reference = value == "current" ? PropagationReference::CurrentPoint : PropagationReference::Seed;
         else if (key == "--order") param.order = value == "bfs" ? PropagationOrder::BreadthFirst : PropagationOrder::DepthFirst;
@@ -52,11 +55,13 @@ int main(int argc, char **argv)
         const ResamplingResult r = ResamplePointSet(in, param);
         WriteSurfels(r.surfels, out);
         const ResamplingStats &s = r.stats;
-        std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f | "
-                    "time %.3f s (neighbours %.3f propagation %.3f normalization %.3f surfels %.3f)\n",
+        std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f level %d "
+                    "(%d tried) splits %d+%d | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+                    "refinement %.3f surfels %.3f)\n",
                     s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
-                    s.iterations, s.meanAdaptiveNeighbors, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
-                    s.secondsNormalization, s.secondsSurfels);
+                    s.iterations, s.meanAdaptiveNeighbors, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
+                    s.splitsForTarget, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
+                    s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

@@ -2,7 +2,9 @@
 // kept only inside its cone of normals <n_p, n_q> >= 1 - d_max^2 / 2.
 //
 // The result is the paper's directed neighbour graph N(p), stored with a fixed stride of
-// k slots per point (no second copy of the unfiltered k-NN lists), plus each point's
+// k slots per point: the k nearest, nearest first, with the ones inside the cone moved
+// to the front. Keeping the rejected ones lets RestrictToCone() re-filter the same search
+// for another Gaussian sphere level without searching again. Each point also gets its
 // local sample spacing, which the surfel stage uses to close the gaps between surfels.
 #ifndef VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
 #define VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -22,8 +25,9 @@ namespace gaussphere {
 struct NeighborGraph
 {
     int stride = 0;                 ///< k: slots per point
-    std::vector<int> adjacency;     ///< neighbours of i in adjacency[i*stride, i*stride + count[i])
-    std::vector<std::uint8_t> count;
+    std::vector<int> adjacency;     ///< N(i) = adjacency[i*stride, i*stride + count[i])
+    std::vector<std::uint8_t> count; ///< neighbours inside the cone
+    std::vector<std::uint8_t> found; ///< neighbours found (min(k, N-1)), kept ones first
     /// Mean distance to the (up to) 6 nearest neighbours at a non-zero distance; for a
     /// point whose k neighbours all coincide with it, the median spacing of the others
     /// (or 1e-3 when every point coincides: there is no scale to read).
@@ -56,6 +60,37 @@ inline void FillUnknownSpacing(std::vector<float> &spacing)
         if (!(s > 0)) s = fallback;
 }
 
+/// Orders each point's slots canonically: the neighbours q with |n_p - n_q| <= chord
+/// first, then the others, each group by increasing (distance, index); sets count. The
+/// result depends only on the chord, not on earlier calls.
+inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+                           double chord, NeighborGraph &g)
+{
+    const float minDot = float(1.0 - 0.5 * chord * chord);
+    const int n = g.Size();
+#pragma omp parallel
+    {
+        // (outside the cone, squared distance, index): kept ones first, then by distance.
+        std::vector<std::tuple<bool, float, int>> keyed(g.stride);
+#pragma omp for schedule(static)
+        for (int i = 0; i < n; ++i) {
+            int *slot = g.adjacency.data() + size_t(i) * g.stride;
+            const int found = g.found[i];
+            for (int t = 0; t < found; ++t) {
+                const int j = slot[t];
+                keyed[t] = std::make_tuple(normals[i].dot(normals[j]) < minDot, (points[j] - points[i]).SquaredNorm(), j);
+            }
+            std::sort(keyed.begin(), keyed.begin() + found);
+            int kept = 0;
+            for (int t = 0; t < found; ++t) {
+                slot[t] = std::get<2>(keyed[t]);
+                kept += !std::get<0>(keyed[t]);
+            }
+            g.count[i] = std::uint8_t(kept);
+        }
+    }
+}
+
 /// Builds N(p) for unit normals `normals` at `points` (same size, finite).
 /// Postcondition: graph.Size() == points.size(); every kept neighbour j != i is among
 /// the k nearest of i and satisfies the cone test. Runs in parallel with OpenMP; the
@@ -70,8 +105,8 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     g.stride = std::max(1, std::min({param.k, 255, std::max(1, n - 1)}));
     g.adjacency.assign(size_t(n) * g.stride, -1);
     g.count.assign(n, 0);
+    g.found.assign(n, 0);
     g.spacing.assign(n, 0.f);
-    const float minDot = float(1.0 - 0.5 * param.coneChord * param.coneChord);
     const std::vector<int> &order = tree.LeafOrder();
 
 #pragma omp parallel
@@ -87,14 +122,12 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
             for (int t = 0; t < found && near < 6; ++t)
                 if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
             g.spacing[i] = near > 0 ? sum / near : 0.f;
-            int *out = g.adjacency.data() + size_t(i) * g.stride;
-            int kept = 0;
-            for (int t = 0; t < found; ++t)
-                if (normals[i].dot(normals[idx[t]]) >= minDot) out[kept++] = idx[t];
-            g.count[i] = std::uint8_t(kept);
+            std::copy(idx.begin(), idx.begin() + found, g.adjacency.begin() + size_t(i) * g.stride);
+            g.found[i] = std::uint8_t(found);
         }
     }
     FillUnknownSpacing(g.spacing);
+    RestrictToCone(points, normals, param.coneChord, g);
     return g;
 }
 

@@ -25,6 +25,7 @@
 
 #include "adaptive_neighbors.h"
 #include "cluster_normalization.h"
+#include "cluster_refinement.h"
 #include "clustering.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
@@ -49,6 +50,9 @@ struct ResamplingParams
     int maxIterations = 10;          ///< cap on normalization + rejoining rounds
     double convergenceFraction = 0.01; ///< stop when the count changes by less than this x N
     double coverageMargin = 0.75;    ///< ellipse growth, in local sample spacings
+    int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
+    double maxErrorFraction = 0;     ///< bound on point-to-surfel-plane distance, as a
+                                     ///< fraction of the bbox diagonal (0 = off)
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string Validate() const
@@ -60,6 +64,8 @@ struct ResamplingParams
         if (maxIterations < 0) return "MaxIterations must not be negative";
         if (!(weightWidth < 0 || weightWidth > 0)) return "WeightWidth must be positive";
         if (!(coverageMargin >= 0)) return "coverage margin must not be negative";
+        if (targetCount < 0) return "TargetCount must not be negative";
+        if (!(maxErrorFraction >= 0 && maxErrorFraction < 1)) return "MaxError must be between 0 (off) and 1";
         return std::string();
     }
 };
@@ -71,9 +77,17 @@ struct ResamplingStats
     int outputCount = 0;
     int naiveCount = 0;            ///< clusters after naive sampling and rejoining
     int iterations = 0;            ///< normalization rounds run
+    int levelUsed = 0;             ///< Gaussian sphere level of the final clustering
+    int levelsTried = 0;           ///< levels clustered while searching for targetCount
+    int splitsForTarget = 0;       ///< clusters split to reach targetCount exactly
+    int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction
     double meanAdaptiveNeighbors = 0;
-    double secondsNeighbors = 0, secondsPropagation = 0, secondsNormalization = 0, secondsSurfels = 0;
-    double TotalSeconds() const { return secondsNeighbors + secondsPropagation + secondsNormalization + secondsSurfels; }
+    double secondsNeighbors = 0, secondsPropagation = 0, secondsNormalization = 0, secondsRefinement = 0,
+           secondsSurfels = 0;
+    double TotalSeconds() const
+    {
+        return secondsNeighbors + secondsPropagation + secondsNormalization + secondsRefinement + secondsSurfels;
+    }
 };
 
 struct ResamplingResult
@@ -158,54 +172,109 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     for (const auto &p : points) box.Add(p);
     const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * box.Diag();
 
-    // 1. Adaptive neighbours.
+    // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
-    const GaussianSphere sphere(param.subdivisionLevel, param.base);
-    const double dMax = sphere.PaperMaxEdgeLength();
     const PointKdTree tree(points);
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = param.neighborCount;
-    neighborParam.coneChord = dMax;
-    const NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, tree);
-    long long kept = 0;
-    for (int i = 0; i < n; ++i) kept += graph.count[i];
-    stats.meanAdaptiveNeighbors = double(kept) / n;
+    neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
+    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, tree);
     stats.secondsNeighbors = timer.Lap();
 
-    // 2. Naive sampling.
-    detail::Report(cb, 45, "Gaussian sphere resampling: index propagation");
-    std::vector<int> triangle(n);
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i) triangle[i] = sphere.TriangleOf(normals[i]);
-    Clustering clusters;
-    clusters.label.assign(n, 0);
-    IndexPropagationParams propagation;
-    propagation.maxDepth = param.propagationDepth;
-    propagation.inscribedRadius = dMax / (2.0 * std::sqrt(3.0));
-    propagation.reference = param.reference;
-    propagation.order = param.order;
-    PropagateIndices(normals, triangle, graph, tree.LeafOrder(), propagation, clusters);
-    RejoinSingletons(normals, graph, dMax, clusters);
-    clusters.Compact();
-    stats.naiveCount = clusters.clusterCount;
-    stats.secondsPropagation = timer.Lap();
-
-    // 3. Optimized sampling: normalization and rejoining until the count settles.
+    // 2-3. Naive sampling and optimized sampling at one level.
     ClusterNormalizationParams normalization;
     normalization.threshold = param.normalizationThreshold;
     normalization.minSplitSize = param.minSplitSize;
-    const double settled = param.convergenceFraction * n;
-    for (int round = 0; round < param.maxIterations; ++round) {
-        detail::Report(cb, 60 + 25 * round / std::max(1, param.maxIterations),
-                       "Gaussian sphere resampling: cluster normalization");
-        const int before = clusters.clusterCount;
-        SplitElongatedClusters(points, normalization, clusters);
-        RejoinSingletons(normals, graph, dMax, clusters);
-        clusters.Compact();
-        ++stats.iterations;
-        if (std::abs(clusters.clusterCount - before) < settled) break;
+    struct LevelResult
+    {
+        Clustering clusters;
+        int level = 0, naiveCount = 0, iterations = 0;
+        double meanAdaptiveNeighbors = 0;
+    };
+    auto clusterAtLevel = [&](int level) {
+        LevelResult r;
+        r.level = level;
+        const GaussianSphere sphere(level, param.base);
+        const double dMax = sphere.PaperMaxEdgeLength();
+        RestrictToCone(points, normals, dMax, graph);
+        long long kept = 0;
+        for (int i = 0; i < n; ++i) kept += graph.count[i];
+        r.meanAdaptiveNeighbors = double(kept) / n;
+        std::vector<int> triangle(n);
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < n; ++i) triangle[i] = sphere.TriangleOf(normals[i]);
+        Clustering &c = r.clusters;
+        c.label.assign(n, 0);
+        IndexPropagationParams propagation;
+        propagation.maxDepth = param.propagationDepth;
+        propagation.inscribedRadius = dMax / (2.0 * std::sqrt(3.0));
+        propagation.reference = param.reference;
+        propagation.order = param.order;
+        PropagateIndices(normals, triangle, graph, tree.LeafOrder(), propagation, c);
+        RejoinSingletons(normals, graph, dMax, c);
+        c.Compact();
+        r.naiveCount = c.clusterCount;
+        stats.secondsPropagation += timer.Lap();
+
+        const double settled = param.convergenceFraction * n;
+        for (int round = 0; round < param.maxIterations; ++round) {
+            const int before = c.clusterCount;
+            SplitElongatedClusters(points, normalization, c);
+            RejoinSingletons(normals, graph, dMax, c);
+            c.Compact();
+            ++r.iterations;
+            if (std::abs(c.clusterCount - before) < settled) break;
+        }
+        ++stats.levelsTried;
+        stats.secondsNormalization += timer.Lap();
+        return r;
+    };
+
+    detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
+    LevelResult chosen = clusterAtLevel(param.subdivisionLevel);
+    if (param.targetCount > 0) {
+        // The count grows with the level: find the finest level in [2, 256] whose count
+        // stays at or below the target (doubling, then bisection); splitting then adds the
+        // rest. If even level 2 gives more, level 2 is the result.
+        const int maxLevel = 256;
+        int good = 0, bad = 0; // finest level known to fit, coarsest known not to
+        LevelResult fitting, coarsestTooMany;
+        auto consider = [&](LevelResult &&r) {
+            if (r.clusters.clusterCount <= param.targetCount) {
+                if (r.level > good) { good = r.level; fitting = std::move(r); }
+            } else if (!bad || r.level < bad) {
+                bad = r.level;
+                coarsestTooMany = std::move(r);
+            }
+        };
+        consider(std::move(chosen));
+        while (true) {
+            int next;
+            if (good && bad) { if (bad - good <= 1) break; next = (good + bad) / 2; }
+            else if (good) { if (good == maxLevel) break; next = std::min(maxLevel, 2 * good); }
+            else { if (bad == 2) break; next = std::max(2, bad / 2); }
+            detail::Report(cb, std::min(75, 45 + 4 * stats.levelsTried), "Gaussian sphere resampling: searching the level");
+            consider(clusterAtLevel(next));
+        }
+        chosen = std::move(good ? fitting : coarsestTooMany);
     }
-    stats.secondsNormalization = timer.Lap();
+    Clustering &clusters = chosen.clusters;
+    stats.levelUsed = chosen.level;
+    stats.naiveCount = chosen.naiveCount;
+    stats.iterations = chosen.iterations;
+    stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
+
+    // Refinements beyond the paper: error bound, then exact size.
+    const double invH2 = 1.0 / (weightWidth * weightWidth);
+    if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
+        detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
+        ClusterRefiner refiner(points, normals, clusters, invH2);
+        if (param.maxErrorFraction > 0)
+            stats.splitsForErrorBound = refiner.SplitToErrorBound(param.maxErrorFraction * box.Diag());
+        if (param.targetCount > 0)
+            stats.splitsForTarget = refiner.SplitToCount(param.targetCount);
+    }
+    stats.secondsRefinement = timer.Lap();
 
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");

@@ -68,6 +68,54 @@ inline Eigen::Vector3d AnyTangent(const Eigen::Vector3d &normal)
 
 } // namespace detail
 
+/// Centroid, surfel normal and tangent frame of a set of points (a cluster or part of one).
+struct ClusterFrame
+{
+    Eigen::Vector3d centroid;
+    Eigen::Vector3d normal;  ///< unit: the Gaussian-weighted average normal
+    Eigen::Vector3d u, v;    ///< unit tangents; u: largest normal variation (or positional spread)
+};
+
+/// The frame of the points index[begin, end) (non-empty). invH2 = 1/h^2 of the weights.
+inline ClusterFrame ComputeClusterFrame(const std::vector<vcg::Point3f> &points,
+                                        const std::vector<vcg::Point3f> &normals, const int *begin,
+                                        const int *end, double invH2)
+{
+    using detail::ToEigen;
+    const int size = int(end - begin);
+    ClusterFrame f;
+    f.centroid = Eigen::Vector3d::Zero();
+    for (const int *i = begin; i != end; ++i) f.centroid += ToEigen(points[*i]);
+    f.centroid /= size;
+
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
+    for (const int *i = begin; i != end; ++i) {
+        const double r2 = (ToEigen(points[*i]) - f.centroid).squaredNorm();
+        weighted += std::exp(-r2 * invH2) * ToEigen(normals[*i]);
+        plain += ToEigen(normals[*i]);
+    }
+    f.normal = weighted.norm() > 1e-12 ? weighted.normalized()
+             : plain.norm() > 1e-12   ? plain.normalized()
+                                      : ToEigen(normals[*begin]);
+
+    CovarianceAccumulator normalCov, positionCov;
+    for (const int *i = begin; i != end; ++i) {
+        normalCov.Add(ToEigen(normals[*i]) - f.normal);
+        positionCov.Add(ToEigen(points[*i]) - f.centroid);
+    }
+    f.u = Eigen::Vector3d::Zero();
+    if (size >= 3) {
+        const PrincipalAxes byNormals = ComputePrincipalAxes(normalCov.Covariance());
+        if (byNormals.value[0] > 1e-8) // otherwise the normals agree: no direction to read
+            f.u = detail::TangentPart(byNormals.axis.col(0), f.normal);
+    }
+    if (f.u.isZero() && size >= 2)
+        f.u = detail::TangentPart(ComputePrincipalAxes(positionCov.Covariance()).axis.col(0), f.normal);
+    if (f.u.isZero()) f.u = detail::AnyTangent(f.normal);
+    f.v = f.normal.cross(f.u);
+    return f;
+}
+
 /// One surfel per cluster, in cluster order. `spacing` is the per-point local sample
 /// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
 inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &points,
@@ -82,40 +130,12 @@ inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &poin
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < clusters.clusterCount; ++c) {
         const int size = members.Size(c);
-        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        const ClusterFrame frame = ComputeClusterFrame(points, normals, members.begin(c), members.end(c), invH2);
+        const Eigen::Vector3d &centroid = frame.centroid, &normal = frame.normal;
+        Eigen::Vector3d u = frame.u, v = frame.v;
         double meanSpacing = 0;
-        for (const int *i = members.begin(c); i != members.end(c); ++i) {
-            centroid += ToEigen(points[*i]);
-            meanSpacing += spacing[*i];
-        }
-        centroid /= size;
+        for (const int *i = members.begin(c); i != members.end(c); ++i) meanSpacing += spacing[*i];
         meanSpacing /= size;
-
-        Eigen::Vector3d weighted = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
-        for (const int *i = members.begin(c); i != members.end(c); ++i) {
-            const double r2 = (ToEigen(points[*i]) - centroid).squaredNorm();
-            weighted += std::exp(-r2 * invH2) * ToEigen(normals[*i]);
-            plain += ToEigen(normals[*i]);
-        }
-        const Eigen::Vector3d normal = weighted.norm() > 1e-12 ? weighted.normalized()
-                                     : plain.norm() > 1e-12 ? plain.normalized()
-                                                             : ToEigen(normals[*members.begin(c)]);
-
-        CovarianceAccumulator normalCov, positionCov;
-        for (const int *i = members.begin(c); i != members.end(c); ++i) {
-            normalCov.Add(ToEigen(normals[*i]) - normal);
-            positionCov.Add(ToEigen(points[*i]) - centroid);
-        }
-        Eigen::Vector3d u = Eigen::Vector3d::Zero();
-        if (size >= 3) {
-            const PrincipalAxes byNormals = ComputePrincipalAxes(normalCov.Covariance());
-            if (byNormals.value[0] > 1e-8) // otherwise the normals agree: no direction to read
-                u = detail::TangentPart(byNormals.axis.col(0), normal);
-        }
-        if (u.isZero() && size >= 2)
-            u = detail::TangentPart(ComputePrincipalAxes(positionCov.Covariance()).axis.col(0), normal);
-        if (u.isZero()) u = detail::AnyTangent(normal);
-        Eigen::Vector3d v = normal.cross(u);
 
         // Spread along u and v; the longer direction becomes the major axis.
         double sxx = 0, syy = 0;

@@ -1,0 +1,148 @@
+// Beyond the paper: refining a clustering to an exact size or to an error bound.
+//
+// Both refinements split one cluster at a time through its centroid, perpendicular to
+// the tangent direction along which its normals vary most (the principal direction of
+// the normal covariance, as for the ellipse axes; the positional major axis for a flat
+// cluster). Splitting along the normal variation separates the two sides of a crease or
+// ridge first, which is what keeps the result feature sensitive.
+//
+// - SplitToCount: splits the cluster with the largest L2,1 error, sum |n_i - n'|^2 over its
+//   members (ties: the larger cluster), until the requested count is reached. Each split
+//   adds exactly one cluster.
+// - SplitToErrorBound: splits every cluster with a member farther than maxDistance from its
+//   surfel plane (centroid, surfel normal) until none is; a one-point cluster lies on its
+//   own plane, so this ends.
+//
+// Clusters are kept as ranges of one index array, partitioned in place, so a split costs
+// time proportional to the cluster's size and no memory beyond the ranges.
+#ifndef VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
+#define VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <utility>
+#include <vector>
+
+#include <vcg/space/point3.h>
+
+#include "clustering.h"
+#include "surfel_generation.h"
+
+namespace vcg {
+namespace gaussphere {
+
+class ClusterRefiner
+{
+public:
+    /// invH2 = 1/h^2 of the surfel normal weights (SurfelGenerationParams::weightWidth).
+    ClusterRefiner(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+                   Clustering &clusters, double invH2)
+        : points_(points), normals_(normals), clusters_(clusters), invH2_(invH2)
+    {
+        const ClusterMembers members(clusters);
+        index_ = members.index;
+        for (int c = 0; c < clusters.clusterCount; ++c) range_.push_back({members.offset[c], members.offset[c + 1]});
+    }
+
+    int Count() const { return int(range_.size()); }
+
+    /// Splits the clusters with the largest L2,1 error until there are `target` clusters
+    /// (or no cluster can be split). Returns the number of splits.
+    int SplitToCount(int target)
+    {
+        typedef std::pair<std::pair<double, int>, int> Entry; // ((error, size), cluster)
+        std::priority_queue<Entry> queue;
+        auto push = [&](int c) {
+            if (Size(c) > 1) queue.push({{NormalError(c), Size(c)}, c});
+        };
+        for (int c = 0; c < Count(); ++c) push(c);
+        int splits = 0;
+        while (Count() < target && !queue.empty()) {
+            const int c = queue.top().second;
+            queue.pop();
+            const int added = Split(c);
+            if (added < 0) continue;
+            ++splits;
+            push(c);
+            push(added);
+        }
+        return splits;
+    }
+
+    /// Splits until every member lies within maxDistance of its cluster's surfel plane.
+    /// Returns the number of splits.
+    int SplitToErrorBound(double maxDistance)
+    {
+        std::vector<int> pending;
+        for (int c = 0; c < Count(); ++c) pending.push_back(c);
+        int splits = 0;
+        while (!pending.empty()) {
+            const int c = pending.back();
+            pending.pop_back();
+            if (Size(c) < 2 || PlaneDistance(c) <= maxDistance) continue;
+            const int added = Split(c);
+            if (added < 0) continue; // coincident points: nothing to separate
+            ++splits;
+            pending.push_back(c);
+            pending.push_back(added);
+        }
+        return splits;
+    }
+
+private:
+    int Size(int c) const { return range_[c].second - range_[c].first; }
+    const int *Begin(int c) const { return index_.data() + range_[c].first; }
+    const int *End(int c) const { return index_.data() + range_[c].second; }
+
+    double NormalError(int c) const
+    {
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int *i = Begin(c); i != End(c); ++i) mean += detail::ToEigen(normals_[*i]);
+        mean /= Size(c);
+        // sum |n_i - mean|^2 = sum |n_i|^2 - size |mean|^2 for the unconstrained minimizer.
+        return std::max(0.0, Size(c) * (1.0 - mean.squaredNorm()));
+    }
+
+    double PlaneDistance(int c) const
+    {
+        const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
+        double worst = 0;
+        for (const int *i = Begin(c); i != End(c); ++i)
+            worst = std::max(worst, std::abs((detail::ToEigen(points_[*i]) - f.centroid).dot(f.normal)));
+        return worst;
+    }
+
+    /// Splits cluster c in two; returns the new cluster's index, or -1 if every member
+    /// projects to the same side along each candidate direction (u, v, then the normal).
+    int Split(int c)
+    {
+        const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
+        for (const Eigen::Vector3d &dir : {f.u, f.v, f.normal}) {
+            int *first = index_.data() + range_[c].first, *last = index_.data() + range_[c].second;
+            int *mid = std::partition(first, last, [&](int i) {
+                return (detail::ToEigen(points_[i]) - f.centroid).dot(dir) <= 0;
+            });
+            if (mid == first || mid == last) continue;
+            const int added = Count();
+            const int split = int(mid - index_.data());
+            range_.push_back({split, range_[c].second});
+            range_[c].second = split;
+            for (const int *i = Begin(added); i != End(added); ++i) clusters_.label[*i] = added;
+            clusters_.clusterCount = Count();
+            return added;
+        }
+        return -1;
+    }
+
+    const std::vector<vcg::Point3f> &points_, &normals_;
+    Clustering &clusters_;
+    double invH2_;
+    std::vector<int> index_;
+    std::vector<std::pair<int, int>> range_;
+};
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif
