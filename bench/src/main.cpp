@@ -1,0 +1,494 @@
+// gsbench: our Gaussian sphere resampler against its peers at equal output counts, with the
+// error metric of the paper's section 5.2 (vcg_ext/surfel_error).
+//
+//   gsbench compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]
+//                   [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]
+//                   [--tolerance F] [--no-process]
+//     Runs our resampler at level N (default 8), tunes every peer in LIST to the same count
+//     (+- F, default 0.02), measures each output, and appends one CSV row per method to OUT.csv
+//     (default stdout). LIST (default: all) is a comma-separated subset of
+//       ours             our resampler; one row per thread count in --threads (default 1,2)
+//       ours-circular    our surfel centres measured as plain points: no ellipses, no
+//                        point-to-surfel map (shows what the metric owes to the ellipses)
+//       cgal-hierarchy   CGAL hierarchy_simplify_point_set (Pauly et al. 2002)
+//       cgal-grid        CGAL grid_simplify_point_set
+//       meshlab-poisson  MeshLab's Point Cloud Simplification through meshlabserver (needs
+//                        --meshlabserver and an X display)
+//       floor            S' = S, the metric's floor
+//     Times: "alg" is the median of R (default 3) in-process runs of the algorithm alone, after
+//     loading; "process" is the median wall time of R runs of `gsbench run` (load, run, save)
+//     or of meshlabserver, whose peak resident memory is reported too. --no-process skips the
+//     process runs (the figure-7 sweep needs only counts and errors).
+//
+//   gsbench run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]
+//               [--variation V] [--cell C]
+//     The process measured by compare: load, one method, save, nothing else.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <omp.h>
+#include <sys/stat.h>
+
+#include <vcg_ext/gaussphere/resampling.h>
+#include <vcg_ext/gaussphere/surfel_mesh.h>
+
+#include "child_process.h"
+#include "peers.h"
+#include "point_sets.h"
+
+using namespace gsbench;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// Command line
+
+/// "--key value" pairs after the positional arguments.
+class Options
+{
+public:
+    Options(int argc, char **argv, int first)
+    {
+        for (int a = first; a < argc; ++a) {
+            const std::string key = argv[a];
+            if (key.rfind("--", 0) != 0) throw std::invalid_argument("unexpected argument " + key);
+            if (key == "--no-process") { values_[key] = "1"; continue; }
+            if (a + 1 >= argc) throw std::invalid_argument(key + " needs a value");
+            values_[key] = argv[++a];
+        }
+    }
+    std::string Get(const std::string &key, const std::string &fallback) const
+    {
+        used_.insert(key);
+        const auto it = values_.find(key);
+        return it == values_.end() ? fallback : it->second;
+    }
+    int Int(const std::string &key, int fallback) const { return std::stoi(Get(key, std::to_string(fallback))); }
+    double Real(const std::string &key, double fallback) const
+    {
+        const std::string v = Get(key, "");
+        return v.empty() ? fallback : std::stod(v);
+    }
+    bool Has(const std::string &key) const { used_.insert(key); return values_.count(key) > 0; }
+    /// Call after every Get: rejects misspelt options instead of ignoring them.
+    void RejectUnused() const
+    {
+        for (const auto &kv : values_)
+            if (!used_.count(kv.first)) throw std::invalid_argument("unknown option " + kv.first);
+    }
+
+private:
+    std::map<std::string, std::string> values_;
+    mutable std::set<std::string> used_;
+};
+
+std::vector<std::string> Split(const std::string &list)
+{
+    std::vector<std::string> items;
+    std::istringstream in(list);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) items.push_back(item);
+    return items;
+}
+
+double Median(std::vector<double> values)
+{
+    if (values.empty()) return kNaN;
+    std::sort(values.begin(), values.end());
+    const size_t m = values.size() / 2;
+    return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
+/// Median of `runs` timings of `timedRun`, which returns its own duration in seconds.
+double MedianSeconds(int runs, const std::function<double()> &timedRun)
+{
+    std::vector<double> seconds;
+    for (int r = 0; r < runs; ++r) seconds.push_back(timedRun());
+    return Median(seconds);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Our resampler
+
+vcg::gaussphere::ResamplingResult RunOurs(const PointMesh &input, int level, int threads, double *seconds)
+{
+    vcg::gaussphere::ResamplingParams param;
+    param.subdivisionLevel = level;
+    omp_set_num_threads(threads);
+    const auto start = std::chrono::steady_clock::now();
+    vcg::gaussphere::ResamplingResult result = vcg::gaussphere::ResamplePointSet(input, param);
+    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, SimplifiedSet &set)
+{
+    vcg::gaussphere::WriteSurfels(result.surfels, set.mesh);
+    set.major.clear();
+    set.minor.clear();
+    for (const auto &s : result.surfels) {
+        set.major.push_back(s.majorAxis);
+        set.minor.push_back(s.minorAxis);
+    }
+    set.representative = result.representative;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Results
+
+/// One line of the raw table: one method on one model at one level.
+struct Row
+{
+    std::string model, method, parameters;
+    int inputPoints = 0, level = 0, threads = 0, points = 0, evaluations = 0;
+    bool matched = true;
+    double timeAlg = kNaN, timeProcess = kNaN, peakMegabytes = kNaN;
+    bool measured = false;
+    vcg::tri::SurfelErrorStats error;
+};
+
+const char *kCsvHeader =
+    "model,input_points,level,method,threads,points,percent,parameters,matched,match_evaluations,"
+    "time_alg_s,time_process_s,peak_mb,l21_own_rms,l21_own_max,l21_own_p999,l21_blend_rms,"
+    "l21_blend_max,l21_blend_p999,dstar_rms,dstar_max,dstar_p999,unconverged,diagonal";
+
+std::string Number(double v, int digits = 6)
+{
+    if (std::isnan(v)) return "";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    return buffer;
+}
+
+std::string CsvLine(const Row &r)
+{
+    const auto &e = r.error;
+    auto err = [&](double v) { return r.measured ? Number(v) : std::string(); };
+    std::ostringstream line;
+    line << r.model << ',' << r.inputPoints << ',' << r.level << ',' << r.method << ','
+         << (r.threads ? std::to_string(r.threads) : "") << ',' << r.points << ','
+         << Number(100.0 * r.points / r.inputPoints, 4) << ',' << r.parameters << ','
+         << (r.matched ? "yes" : "no") << ',' << r.evaluations << ',' << Number(r.timeAlg, 4) << ','
+         << Number(r.timeProcess, 4) << ',' << Number(r.peakMegabytes, 4) << ','
+         << err(e.normalToOwnSurfel.rms) << ',' << err(e.normalToOwnSurfel.max) << ','
+         << err(e.normalToOwnSurfel.p999) << ',' << err(e.normalToBlended.rms) << ','
+         << err(e.normalToBlended.max) << ',' << err(e.normalToBlended.p999) << ','
+         << err(e.normalizedDistance.rms) << ',' << err(e.normalizedDistance.max) << ','
+         << err(e.normalizedDistance.p999) << ',' << (r.measured ? std::to_string(e.unconvergedCount) : "")
+         << ',' << err(e.diagonal);
+    return line.str();
+}
+
+void WriteRows(const std::string &path, const std::vector<Row> &rows)
+{
+    if (path.empty() || path == "-") {
+        std::printf("%s\n", kCsvHeader);
+        for (const Row &r : rows) std::printf("%s\n", CsvLine(r).c_str());
+        return;
+    }
+    struct stat st;
+    const bool fresh = stat(path.c_str(), &st) != 0 || st.st_size == 0;
+    std::ofstream out(path, std::ios::app);
+    if (fresh) out << kCsvHeader << '\n';
+    for (const Row &r : rows) out << CsvLine(r) << '\n';
+    if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void Announce(const Row &r)
+{
+    std::fprintf(stderr, "  %-16s %8d pts %s | alg %s s, process %s s, %s MB | L21 own %s/%s blend %s/%s | D* %s/%s\n",
+                 (r.method + (r.threads ? "/" + std::to_string(r.threads) + "t" : "")).c_str(), r.points,
+                 r.parameters.c_str(), Number(r.timeAlg, 3).c_str(), Number(r.timeProcess, 3).c_str(),
+                 Number(r.peakMegabytes, 4).c_str(), Number(r.error.normalToOwnSurfel.rms, 3).c_str(),
+                 Number(r.error.normalToOwnSurfel.max, 3).c_str(), Number(r.error.normalToBlended.rms, 3).c_str(),
+                 Number(r.error.normalToBlended.max, 3).c_str(), Number(r.error.normalizedDistance.rms, 3).c_str(),
+                 Number(r.error.normalizedDistance.max, 3).c_str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// compare
+
+struct ProcessFigures
+{
+    double seconds = kNaN, peakMegabytes = kNaN;
+};
+
+/// Median wall time and peak memory of `runs` runs of a child process that must succeed.
+ProcessFigures MeasureProcess(int runs, const std::function<ChildRun()> &runOnce)
+{
+    ProcessFigures f;
+    std::vector<double> seconds;
+    f.peakMegabytes = 0;
+    for (int r = 0; r < runs; ++r) {
+        const ChildRun run = runOnce();
+        if (run.exitStatus != 0) throw std::runtime_error("a measured process failed");
+        seconds.push_back(run.wallSeconds);
+        f.peakMegabytes = std::max(f.peakMegabytes, run.peakMegabytes);
+    }
+    f.seconds = Median(seconds);
+    return f;
+}
+
+int Compare(const std::string &inputPath, const Options &opt)
+{
+    const std::string name = opt.Get("--name", "model");
+    const int level = opt.Int("--level", 8);
+    const int runs = std::max(1, opt.Int("--runs", 3));
+    const double tolerance = opt.Real("--tolerance", 0.02);
+    const bool process = !opt.Has("--no-process");
+    const std::string csv = opt.Get("--csv", "-");
+    const std::string work = opt.Get("--work", "/tmp/gsbench");
+    const std::string meshlabserver = opt.Get("--meshlabserver", "");
+    const std::vector<std::string> methods =
+        Split(opt.Get("--methods", "ours,ours-circular,cgal-hierarchy,cgal-grid,meshlab-poisson,floor"));
+    std::vector<int> threadCounts;
+    for (const std::string &t : Split(opt.Get("--threads", "1,2"))) threadCounts.push_back(std::stoi(t));
+    opt.RejectUnused();
+    if (threadCounts.empty()) throw std::invalid_argument("--threads needs at least one count");
+    auto wanted = [&](const std::string &m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+    if (wanted("meshlab-poisson") && meshlabserver.empty())
+        throw std::invalid_argument("meshlab-poisson needs --meshlabserver");
+    mkdir(work.c_str(), 0755);
+    const std::string self = SelfExecutable();
+    const std::string log = work + "/" + name + ".log";
+    auto outputPath = [&](const std::string &method) { return work + "/" + name + "_n" + std::to_string(level) + "_" + method + ".ply"; };
+
+    PointMesh input;
+    LoadPointSet(inputPath, input);
+    const double diagonal = input.bbox.Diag();
+    // The metric and the searches use every core; only the timed runs pin the thread count.
+    const int cores = omp_get_num_procs();
+    std::fprintf(stderr, "%s: %d points, level %d\n", name.c_str(), input.vn, level);
+
+    std::vector<Row> rows;
+    auto newRow = [&](const std::string &method) {
+        Row r;
+        r.model = name;
+        r.method = method;
+        r.inputPoints = input.vn;
+        r.level = level;
+        return r;
+    };
+    auto measure = [&](Row &r, const SimplifiedSet &set) {
+        omp_set_num_threads(cores);
+        r.error = Evaluate(input, set);
+        r.measured = true;
+        r.points = set.Count();
+    };
+    auto finish = [&](Row &r) {
+        Announce(r);
+        rows.push_back(r);
+    };
+
+    // Ours fixes the count every peer is matched to.
+    SimplifiedSet ours;
+    {
+        std::vector<int> reference; // representative[] of the first thread count, to check the others
+        vcg::tri::SurfelErrorStats error;
+        // Without an "ours" row, one untimed run is enough to fix the target.
+        const int oursRuns = wanted("ours") ? runs : 1;
+        if (!wanted("ours")) threadCounts.resize(1);
+        for (int threads : threadCounts) {
+            vcg::gaussphere::ResamplingResult result;
+            Row r = newRow("ours");
+            r.threads = threads;
+            r.parameters = "n=" + std::to_string(level);
+            r.timeAlg = MedianSeconds(oursRuns, [&]() {
+                double s = 0;
+                result = RunOurs(input, level, threads, &s);
+                return s;
+            });
+            if (reference.empty() || result.representative != reference) {
+                if (!reference.empty())
+                    std::fprintf(stderr, "  warning: ours with %d threads differs from %d threads\n", threads,
+                                 threadCounts.front());
+                ToSimplifiedSet(result, ours);
+                measure(r, ours);
+                error = r.error;
+                if (reference.empty()) reference = result.representative;
+            } else {
+                r.error = error; // identical output: identical figures
+                r.measured = true;
+                r.points = ours.Count();
+            }
+            if (process && wanted("ours")) {
+                const ProcessFigures f = MeasureProcess(runs, [&]() {
+                    return RunChild({self, "run", "ours", inputPath, outputPath("ours"), "--level",
+                                     std::to_string(level), "--threads", std::to_string(threads)}, log);
+                });
+                r.timeProcess = f.seconds;
+                r.peakMegabytes = f.peakMegabytes;
+            }
+            if (wanted("ours")) finish(r);
+        }
+    }
+    const int target = ours.Count();
+
+    if (wanted("ours-circular")) {
+        Row r = newRow("ours-circular");
+        r.parameters = "n=" + std::to_string(level);
+        SimplifiedSet circular;
+        vcg::tri::Append<PointMesh, PointMesh>::MeshCopy(circular.mesh, ours.mesh);
+        for (auto &v : circular.mesh.vert) v.R() = 0;
+        measure(r, circular);
+        finish(r);
+    }
+
+    // The CGAL peers: match, time the algorithm at the matched parameter, measure, run as a process.
+    if (wanted("cgal-hierarchy") || wanted("cgal-grid")) {
+        const CgalPointSet cgal(input);
+        struct CgalPeer
+        {
+            std::string method, parameters;
+            CountMatch match;
+            std::function<std::vector<int>(double *)> run;
+            std::vector<std::string> processArguments;
+        };
+        std::vector<CgalPeer> peers;
+        if (wanted("cgal-hierarchy")) {
+            const HierarchyMatch m = MatchHierarchy(cgal, target, tolerance);
+            peers.push_back({"cgal-hierarchy", m.param.ToString(), m.match,
+                             [&cgal, m](double *s) { return cgal.Hierarchy(m.param, s); },
+                             {"--size", std::to_string(m.param.maxClusterSize), "--variation",
+                              Number(m.param.maxVariation, 17)}});
+        }
+        if (wanted("cgal-grid")) {
+            const CountMatch m = MatchGrid(cgal, diagonal, target, tolerance);
+            peers.push_back({"cgal-grid", "cell=" + Number(m.parameter / diagonal, 4) + "xdiag", m,
+                             [&cgal, m](double *s) { return cgal.Grid(m.parameter, s); },
+                             {"--cell", Number(m.parameter, 17)}});
+        }
+        for (const CgalPeer &peer : peers) {
+            Row r = newRow(peer.method);
+            r.threads = 1;
+            r.parameters = peer.parameters;
+            r.matched = peer.match.withinTolerance;
+            r.evaluations = peer.match.evaluations;
+            std::vector<int> kept;
+            r.timeAlg = MedianSeconds(runs, [&]() {
+                double s = 0;
+                kept = peer.run(&s);
+                return s;
+            });
+            SimplifiedSet set;
+            CopySubset(input, kept, set.mesh);
+            measure(r, set);
+            if (process) {
+                std::vector<std::string> args = {self, "run", peer.method, inputPath, outputPath(peer.method)};
+                args.insert(args.end(), peer.processArguments.begin(), peer.processArguments.end());
+                const ProcessFigures f = MeasureProcess(runs, [&]() { return RunChild(args, log); });
+                r.timeProcess = f.seconds;
+                r.peakMegabytes = f.peakMegabytes;
+            }
+            finish(r);
+        }
+    }
+
+    if (wanted("meshlab-poisson")) {
+        const MeshLabPoisson poisson(meshlabserver, inputPath, diagonal, work);
+        const CountMatch m = poisson.Match(target, tolerance);
+        Row r = newRow("meshlab-poisson");
+        r.parameters = "radius=" + Number(m.parameter / diagonal, 4) + "xdiag";
+        r.matched = m.withinTolerance;
+        r.evaluations = m.evaluations;
+        const std::string output = outputPath("meshlab-poisson");
+        // Even with --no-process one run is needed, for the output to measure.
+        const ProcessFigures f = MeasureProcess(process ? runs : 1, [&]() { return poisson.Run(m.parameter, output); });
+        if (process) {
+            r.timeProcess = f.seconds;
+            r.peakMegabytes = f.peakMegabytes;
+        }
+        SimplifiedSet set;
+        LoadPointSet(output, set.mesh);
+        measure(r, set);
+        finish(r);
+    }
+
+    if (wanted("floor")) {
+        Row r = newRow("floor");
+        r.parameters = "S'=S";
+        SimplifiedSet set;
+        MakeIdentitySet(input, set);
+        measure(r, set);
+        finish(r);
+    }
+
+    WriteRows(csv, rows);
+    return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// run: one method as a whole process
+
+int RunOne(const std::string &method, const std::string &inputPath, const std::string &outputPath, const Options &opt)
+{
+    const int level = opt.Int("--level", 8);
+    const int threads = opt.Int("--threads", 1);
+    HierarchyParams hierarchy;
+    hierarchy.maxClusterSize = opt.Int("--size", hierarchy.maxClusterSize);
+    hierarchy.maxVariation = opt.Real("--variation", hierarchy.maxVariation);
+    const double cell = opt.Real("--cell", 0);
+    opt.RejectUnused();
+
+    PointMesh input, output;
+    LoadPointSet(inputPath, input);
+    if (method == "ours") {
+        const auto result = RunOurs(input, level, threads, nullptr);
+        vcg::gaussphere::WriteSurfels(result.surfels, output);
+        SavePointSet(output, outputPath, true);
+        return 0;
+    }
+    std::vector<int> kept;
+    if (method == "cgal-hierarchy") {
+        kept = CgalPointSet(input).Hierarchy(hierarchy);
+    } else if (method == "cgal-grid") {
+        if (!(cell > 0)) throw std::invalid_argument("cgal-grid needs --cell");
+        kept = CgalPointSet(input).Grid(cell);
+    } else {
+        throw std::invalid_argument("unknown method " + method);
+    }
+    CopySubset(input, kept, output);
+    SavePointSet(output, outputPath, false);
+    return 0;
+}
+
+int Usage(const char *program)
+{
+    std::fprintf(stderr,
+                 "usage: %s compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]\n"
+                 "                  [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]\n"
+                 "                  [--tolerance F] [--no-process]\n"
+                 "       %s run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]\n"
+                 "                  [--variation V] [--cell C]\n"
+                 "(see the comment at the top of bench/src/main.cpp)\n",
+                 program, program);
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    try {
+        const std::string command = argc > 1 ? argv[1] : "";
+        if (command == "compare" && argc >= 3) return Compare(argv[2], Options(argc, argv, 3));
+        if (command == "run" && argc >= 5) return RunOne(argv[2], argv[3], argv[4], Options(argc, argv, 5));
+        return Usage(argv[0]);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "gsbench: %s\n", e.what());
+        return 1;
+    }
+}
