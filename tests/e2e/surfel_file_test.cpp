@@ -150,8 +150,8 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
 }
 
 TEST(SurfelFile, RefusesACountTheDataCannotHoldWithoutAllocatingIt) {
-  expectRefused(withHeaderEdit("vertex 3", "vertex 18446744073709551615"), "truncated file");
-  expectRefused(withHeaderEdit("vertex 3", "vertex 1000000000000000000000"),
+  expectRefused(withHeaderEdit("vertex 3", "vertex 9999999999999999999"), "truncated file");
+  expectRefused(withHeaderEdit("vertex 3", "vertex 18446744073709551616"),
                 "invalid vertex count");
 }
 

@@ -4,8 +4,6 @@
 
 #include <surfel_records_mesh.h>
 
-#include <vcg/simplex/vertex/component_ocf.h>
-
 #include <gtest/gtest.h>
 
 namespace {
