@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <istream>
@@ -253,10 +254,11 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
                      std::string& error) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) return fail(error, "cannot open '" + path + "' for writing: " + std::strerror(errno));
-  if (!writeSurfels(out, surfels, error)) return fail(error, "cannot write '" + path + "': " + error);
+  const bool written = writeSurfels(out, surfels, error);
   out.close();
-  if (!out) return fail(error, "cannot write '" + path + "'");
-  return true;
+  if (written && out) return true;
+  std::remove(path.c_str());  // a partial file would only fail later, when read
+  return fail(error, "cannot write '" + path + "' (disk full?)");
 }
 
 bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels) {
