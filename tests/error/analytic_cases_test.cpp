@@ -143,3 +143,27 @@ TEST(SurfelErrorAnalytic, ResultsDoNotDependOnThreadCount)
     EXPECT_EQ(a.normalToOwnSurfel.rms, b.normalToOwnSurfel.rms);
     EXPECT_EQ(a.normalToBlended.rms, b.normalToBlended.rms);
 }
+
+// A thin part: S samples the lower sheet (z = 0, normal +z); S' has the lower sheet's surfels
+// half a step aside and the upper sheet's (z = t, normal −z) right above every point, so the
+// nearest surfel centers belong to the wrong sheet. The point's own orientation picks the sheet.
+TEST(SurfelErrorAnalytic, ThinPartIsProjectedOntoTheSheetFacingThePoint)
+{
+    const float step = 0.1f, thickness = 0.02f;
+    PointSet original, sheets;
+    AddPlaneGrid(original, 20, 20, step);
+    AddPlaneGrid(sheets, 21, 21, step, 0, -step / 2, -step / 2);
+    for (int i = 0; i < 20; ++i)
+        for (int j = 0; j < 20; ++j)
+            AddPoint(sheets, vcg::Point3f(i * step, j * step, thickness), vcg::Point3f(0, 0, -1));
+
+    const SurfelErrorStats stats = ComputeSurfelError(original, sheets);
+    EXPECT_LT(stats.distance.max, 1e-6);
+    EXPECT_LT(stats.normalToBlended.max, 1e-6);
+    EXPECT_NEAR(stats.normalToOwnSurfel.max, 2.0, 1e-6) << "the nearest surfel is the opposite one";
+
+    // Without a normal there is no side to choose: the heaviest (nearest) surfel's sheet wins.
+    for (auto& v : original.vert)
+        v.N() = vcg::Point3f(0, 0, 0);
+    EXPECT_NEAR(ComputeSurfelError(original, sheets).distance.rms, thickness, 1e-6);
+}

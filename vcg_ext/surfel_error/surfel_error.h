@@ -34,11 +34,13 @@
  * x = q until the step is at most convergenceTolerance × diag(S) or maxIterations steps were
  * taken. The result is q0 and d(q, S') = ‖q − q0‖. The blended normal n(q0) is the one of the
  * last evaluation (at most one converged step away from q0).
- * Of the k surfels, only those facing the same side as the heaviest one (n_i · n_heaviest > 0)
- * are blended: on thin parts the nearest centers include the opposite sheet, whose surfels
- * would pull a(x) between the sheets and cancel n(x). The weights are scaled so that the
- * largest is 1, so the operator stays defined far from every surfel, where it tends to the
- * plane of the surfel nearest in the weights' metric.
+ * Of the k surfels, only those facing the same side as q (n_i · n_q > 0) are blended: on thin
+ * parts the nearest centers include the opposite sheet, whose surfels would pull a(x) between
+ * the sheets, cancel n(x) or capture the projection. When q has no usable normal, or none of the
+ * k surfels faces its side, the side of the heaviest surfel is used instead. Only the sheet is
+ * chosen this way: within it, n_q plays no part in a(x), n(x) or the weights. The weights are
+ * scaled so that the largest blended one is 1, so the operator stays defined far from every
+ * surfel, where it tends to the plane of the surfel nearest in the weights' metric.
  *
  * The projection of a plane sample onto itself is exact; on curved surfaces a(x) lies inside
  * the surface, so S' = S gives a small non-zero floor that grows with widthFactor.
@@ -254,8 +256,11 @@ public:
         std::vector<double> exponents;
     };
 
-    /// Projects q; `tolerance` is an absolute step length.
-    Projection Project(const Point3d& q, int maxIterations, double tolerance, Scratch& scratch) const
+    /// Projects q; `tolerance` is an absolute step length. `side` (unit, or zero for none) picks
+    /// the sheet on thin parts: only surfels with n_i · side > 0 are blended, unless none of the
+    /// k nearest is, in which case the side of the heaviest surfel is used.
+    Projection Project(const Point3d& q, const Point3d& side, int maxIterations, double tolerance,
+                       Scratch& scratch) const
     {
         Projection result;
         result.foot = q;
@@ -265,7 +270,7 @@ public:
             if (step == 0)
                 result.nearestSurfel = NearestInQueue(scratch.queue);
             Point3d average;
-            BlendAt(result.foot, scratch.queue, scratch.exponents, average, result.normal);
+            BlendAt(result.foot, side, scratch.queue, scratch.exponents, average, result.normal);
             const double offset = (result.foot - average).dot(result.normal);
             result.foot -= result.normal * offset;
             result.converged = std::abs(offset) <= tolerance;
@@ -283,36 +288,40 @@ private:
         return queue.getIndex(nearest);
     }
 
-    /// a(x) and n(x) over the surfels in `queue` that face the same side as the heaviest one;
+    /// a(x) and n(x) over the surfels in `queue` that face `side` (see Project());
     /// `exponents` is scratch space.
-    void BlendAt(const Point3d& x, const CenterTree::Queue& queue, std::vector<double>& exponents,
-                 Point3d& average, Point3d& normal) const
+    void BlendAt(const Point3d& x, const Point3d& side, const CenterTree::Queue& queue,
+                 std::vector<double>& exponents, Point3d& average, Point3d& normal) const
     {
         const int count = queue.getNofElements();
         exponents.resize(count);
-        int heaviest = 0;
+        int heaviest = -1, heaviestFacing = -1;
         for (int j = 0; j < count; ++j) {
-            exponents[j] = surfels_[queue.getIndex(j)].WeightExponent(x);
-            if (exponents[j] < exponents[heaviest])
+            const BlendingSurfel& s = surfels_[queue.getIndex(j)];
+            exponents[j] = s.WeightExponent(x);
+            if (heaviest < 0 || exponents[j] < exponents[heaviest])
                 heaviest = j;
+            if (s.normal.dot(side) > 0 && (heaviestFacing < 0 || exponents[j] < exponents[heaviestFacing]))
+                heaviestFacing = j;
         }
-        const Point3d& side = surfels_[queue.getIndex(heaviest)].normal;
+        const int reference = heaviestFacing >= 0 ? heaviestFacing : heaviest;
+        const Point3d& facing = heaviestFacing >= 0 ? side : surfels_[queue.getIndex(heaviest)].normal;
         double weightSum = 0;
         Point3d weightedCenters(0, 0, 0), weightedNormals(0, 0, 0);
         for (int j = 0; j < count; ++j) {
             const BlendingSurfel& s = surfels_[queue.getIndex(j)];
             // Surfels facing away belong to the other side of a thin part; blending them would
             // pull a(x) between the two sheets and cancel n(x).
-            if (s.normal.dot(side) <= 0)
+            if (s.normal.dot(facing) <= 0)
                 continue;
-            // Relative to the heaviest weight, so the weights never all underflow.
-            const double w = std::exp(exponents[heaviest] - exponents[j]);
+            // Relative to the heaviest blended weight, so the weights never all underflow.
+            const double w = std::exp(exponents[reference] - exponents[j]);
             weightSum += w;
             weightedCenters += s.center * w;
             weightedNormals += s.normal * w;
         }
         average = weightedCenters / weightSum;
-        // Every blended normal lies in the open hemisphere around `side`, so the sum is not zero.
+        // Every blended normal lies in the open hemisphere around `facing`, so the sum is not zero.
         normal = weightedNormals / weightedNormals.Norm();
     }
 
@@ -528,12 +537,11 @@ SurfelErrorStats ComputeSurfelError(const OriginalMesh& original, const Simplifi
                 const Point3d q = Point3d::Construct(v.cP());
                 if (v.IsD() || !IsFinite(q))
                     continue;
+                const Point3d normal = UnitOrZero(Point3d::Construct(v.cN()));
                 const SurfelSurface::Projection projection =
-                    surface.Project(q, params.maxIterations, tolerance, scratch);
+                    surface.Project(q, normal, params.maxIterations, tolerance, scratch);
                 distance[i] = (q - projection.foot).Norm();
                 unconverged[i] = !projection.converged;
-
-                const Point3d normal = UnitOrZero(Point3d::Construct(v.cN()));
                 if (normal == Point3d(0, 0, 0))
                     continue;
                 const int named = attributes.representative ? (*attributes.representative)[i] : -1;
