@@ -1,0 +1,304 @@
+// PropagateIndices: naive sampling by index propagation (paper 3.2.2-3.2.3, Algorithm 1).
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include <vcg_ext/gaussphere/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/index_propagation.h>
+
+#include "test_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+using gstest::P3;
+
+std::vector<int> Identity(int n)
+{
+    std::vector<int> v(n);
+    std::iota(v.begin(), v.end(), 0);
+    return v;
+}
+
+/// Path graph 0 - 1 - ... - (n-1), edges both ways; `cut` removes the edges around a point.
+std::vector<std::vector<int>> PathAdjacency(int n, int cutAfter = -1)
+{
+    std::vector<std::vector<int>> adj(n);
+    for (int i = 0; i + 1 < n; ++i) {
+        if (i == cutAfter) continue;
+        adj[i].push_back(i + 1);
+        adj[i + 1].push_back(i);
+    }
+    return adj;
+}
+
+Clustering Propagate(const std::vector<P3> &normals, const std::vector<int> &triangle, const NeighborGraph &g,
+                     const std::vector<int> &seedOrder, const IndexPropagationParams &p,
+                     std::vector<int> initial = {})
+{
+    Clustering c;
+    c.label = initial.empty() ? std::vector<int>(normals.size(), 0) : initial;
+    PropagateIndices(normals, triangle, g, seedOrder, p, c);
+    return c;
+}
+
+IndexPropagationParams Params(int depth, PropagationReference ref = PropagationReference::Seed,
+                              PropagationOrder order = PropagationOrder::DepthFirst)
+{
+    IndexPropagationParams p;
+    p.maxDepth = depth;
+    p.inscribedRadius = GaussianSphere::PaperMaxEdgeLength(8) / (2 * std::sqrt(3.0));
+    p.reference = ref;
+    p.order = order;
+    return p;
+}
+
+// Known answers on a path of 200 points with one normal: from seed s the label reaches
+// the points at most `depth` hops away along unlabelled points, so with seeds in path
+// order the clusters are runs of depth + 1 points: ceil(200 / (depth + 1)) clusters.
+TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
+{
+    const int n = 200;
+    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const std::vector<int> triangle(n, 0);
+    const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
+    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
+        EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(1, PropagationReference::Seed, order)).clusterCount, 100);
+        EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(6, PropagationReference::Seed, order)).clusterCount, 29);
+        const Clustering unlimited = Propagate(normals, triangle, g, Identity(n), Params(0, PropagationReference::Seed, order));
+        EXPECT_EQ(unlimited.clusterCount, 1);
+        for (int l : unlimited.label) EXPECT_EQ(l, 0);
+    }
+    // Depth 6: the runs are exactly 0..6, 7..13, ...
+    const Clustering d6 = Propagate(normals, triangle, g, Identity(n), Params(6));
+    for (int i = 0; i < n; ++i) EXPECT_EQ(d6.label[i], i / 7) << i;
+}
+
+// Without a depth limit a label covers a whole connected component (same normal).
+TEST(IndexPropagation, UnlimitedDepthGivesOneClusterPerComponent)
+{
+    const int n = 200;
+    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const std::vector<int> triangle(n, 0);
+    const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n, 119)); // components 0..119, 120..199
+    std::vector<int> order = Identity(n);
+    std::shuffle(order.begin(), order.end(), std::mt19937(3));
+    const Clustering c = Propagate(normals, triangle, g, order, Params(0));
+    ASSERT_EQ(c.clusterCount, 2);
+    for (int i = 0; i < n; ++i) EXPECT_EQ(c.label[i], c.label[i < 120 ? 0 : 199]) << i;
+    EXPECT_NE(c.label[0], c.label[199]);
+}
+
+// The same on a real adaptive graph: a long strip (3 x 150, spacing 1) and a second strip
+// far away, identical normals. Depth 1 > depth 6 > unlimited = one cluster per strip.
+TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
+{
+    gstest::PointSet s = gstest::PlaneGrid(150, 3, 1.f);
+    const int first = s.Size();
+    for (int i = 0; i < first; ++i) s.Add(s.points[i] + P3(0, 100, 0), s.normals[i]);
+    const PointKdTree tree(s.points);
+    AdaptiveNeighborParams ap;
+    ap.k = 8;
+    const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
+    const std::vector<int> triangle(s.Size(), 5);
+    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
+        const int c1 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(1, PropagationReference::Seed, order)).clusterCount;
+        const int c6 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(6, PropagationReference::Seed, order)).clusterCount;
+        const Clustering c0 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(0, PropagationReference::Seed, order));
+        EXPECT_GT(c1, c6);
+        EXPECT_GT(c6, c0.clusterCount);
+        ASSERT_EQ(c0.clusterCount, 2);
+        for (int i = 0; i < s.Size(); ++i) EXPECT_EQ(c0.label[i], c0.label[i < first ? 0 : first]);
+        // Depth 1: a cluster is a seed and its (at most 8) direct neighbours.
+        EXPECT_GE(c1, 2 * first / 9);
+    }
+}
+
+/// A bumpy height field z = 0.3 sin(x) cos(1.3 y) sampled on a 60 x 60 grid, with exact
+/// normals: they span many Gaussian triangles at n = 8 and vary smoothly, so both the
+/// triangle test and the inscribed-radius test of propagation are exercised.
+struct BumpyGrid
+{
+    gstest::PointSet s;
+    std::vector<int> triangle;
+    NeighborGraph graph;
+    std::vector<int> seedOrder;
+
+    BumpyGrid()
+    {
+        for (int y = 0; y < 60; ++y)
+            for (int x = 0; x < 60; ++x) {
+                const float fx = x * 0.1f, fy = y * 0.1f;
+                const float z = 0.3f * std::sin(fx) * std::cos(1.3f * fy);
+                const float dzdx = 0.3f * std::cos(fx) * std::cos(1.3f * fy);
+                const float dzdy = -0.39f * std::sin(fx) * std::sin(1.3f * fy);
+                P3 n(-dzdx, -dzdy, 1);
+                s.Add(P3(fx, fy, z), n / n.Norm());
+            }
+        const GaussianSphere sphere(8);
+        for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
+        const PointKdTree tree(s.points);
+        AdaptiveNeighborParams ap;
+        ap.coneChord = sphere.PaperMaxEdgeLength();
+        graph = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
+        seedOrder = Identity(s.Size());
+        std::shuffle(seedOrder.begin(), seedOrder.end(), std::mt19937(7));
+    }
+
+    /// The seed of each cluster: the first point of seedOrder carrying its label (every
+    /// point before a seed in seedOrder was labelled earlier, so it has a smaller label).
+    std::vector<int> Seeds(const Clustering &c) const
+    {
+        std::vector<int> seed(c.clusterCount, -1);
+        for (int p : seedOrder)
+            if (c.label[p] >= 0 && seed[c.label[p]] < 0) seed[c.label[p]] = p;
+        return seed;
+    }
+
+    /// Hops from the cluster's seed to each member along graph edges between members
+    /// (-1: not reachable inside the cluster).
+    std::vector<int> HopsFromSeed(const Clustering &c) const
+    {
+        std::vector<int> hops(s.Size(), -1);
+        std::deque<int> queue;
+        for (int seed : Seeds(c)) { hops[seed] = 0; queue.push_back(seed); }
+        while (!queue.empty()) {
+            const int i = queue.front();
+            queue.pop_front();
+            for (const int *q = graph.begin(i); q != graph.end(i); ++q)
+                if (c.label[*q] == c.label[i] && hops[*q] < 0) { hops[*q] = hops[i] + 1; queue.push_back(*q); }
+        }
+        return hops;
+    }
+};
+
+class IndexPropagationOnBumps : public ::testing::Test
+{
+protected:
+    static const BumpyGrid &Data() { static const BumpyGrid g; return g; }
+    static float Radius2() { const double r = Params(0).inscribedRadius; return float(r * r) * 1.0001f; }
+};
+
+// Every point is labelled, each cluster lies in its seed's Gaussian triangle, every
+// member's normal is within the inscribed radius of the seed's, and each cluster is
+// connected in the graph from its seed.
+TEST_F(IndexPropagationOnBumps, SeedReferenceBoundsNormalsAndSharesTriangle)
+{
+    const BumpyGrid &d = Data();
+    for (int depth : {0, 1, 6}) {
+        const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(depth));
+        const std::vector<int> seed = d.Seeds(c);
+        const std::vector<int> hops = d.HopsFromSeed(c);
+        for (int i = 0; i < d.s.Size(); ++i) {
+            ASSERT_GE(c.label[i], 0);
+            ASSERT_LT(c.label[i], c.clusterCount);
+            const int root = seed[c.label[i]];
+            EXPECT_EQ(d.triangle[i], d.triangle[root]) << "point " << i;
+            EXPECT_LE((d.s.normals[i] - d.s.normals[root]).SquaredNorm(), Radius2()) << "point " << i;
+            ASSERT_GE(hops[i], 0) << "point " << i << " is not connected to its seed inside its cluster";
+            if (depth > 0) EXPECT_LE(hops[i], depth) << "point " << i << " lies beyond the depth limit";
+        }
+        // The data must make the radius test bite: more clusters than Gaussian triangles.
+        EXPECT_GT(c.clusterCount, int(std::set<int>(d.triangle.begin(), d.triangle.end()).size()));
+    }
+}
+
+// Maximality without a depth limit: when a member of cluster c was expanded, each of its
+// neighbours that qualified for c (same triangle, within the radius of c's seed) was
+// either already labelled (by an earlier cluster) or taken into c. So no such neighbour
+// carries a later label.
+TEST_F(IndexPropagationOnBumps, UnlimitedClustersAreMaximal)
+{
+    const BumpyGrid &d = Data();
+    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(0));
+    const std::vector<int> seed = d.Seeds(c);
+    for (int i = 0; i < d.s.Size(); ++i) {
+        const int l = c.label[i], root = seed[l];
+        for (const int *q = d.graph.begin(i); q != d.graph.end(i); ++q) {
+            const bool qualifies = d.triangle[*q] == d.triangle[root] &&
+                                   (d.s.normals[*q] - d.s.normals[root]).SquaredNorm() <= Radius2() / 1.0002f;
+            if (qualifies) EXPECT_LE(c.label[*q], l) << "neighbour " << *q << " of " << i << " should have joined";
+        }
+    }
+}
+
+// With the current point as reference, each non-seed member is within the radius of a
+// member that has it as a neighbour (the one that passed the label on).
+TEST_F(IndexPropagationOnBumps, CurrentPointReferenceBoundsNormalsAlongEdges)
+{
+    const BumpyGrid &d = Data();
+    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
+                                   Params(6, PropagationReference::CurrentPoint));
+    const std::vector<int> seed = d.Seeds(c);
+    std::vector<char> reached(d.s.Size(), 0);
+    for (int i = 0; i < d.s.Size(); ++i)
+        for (const int *q = d.graph.begin(i); q != d.graph.end(i); ++q)
+            if (c.label[*q] == c.label[i] && (d.s.normals[*q] - d.s.normals[i]).SquaredNorm() <= Radius2())
+                reached[*q] = 1;
+    for (int i = 0; i < d.s.Size(); ++i) {
+        ASSERT_GE(c.label[i], 0);
+        EXPECT_EQ(d.triangle[i], d.triangle[seed[c.label[i]]]);
+        if (seed[c.label[i]] != i) EXPECT_TRUE(reached[i]) << "point " << i;
+    }
+}
+
+// Depth-first (the paper's stack) and breadth-first traversals both label every point
+// and respect the same invariants (triangle, connectivity, depth).
+TEST_F(IndexPropagationOnBumps, DepthFirstAndBreadthFirstLabelEverything)
+{
+    const BumpyGrid &d = Data();
+    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
+        const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
+                                       Params(6, PropagationReference::Seed, order));
+        const std::vector<int> seed = d.Seeds(c);
+        const std::vector<int> hops = d.HopsFromSeed(c);
+        const auto sizes = gstest::ClusterSizes(c.label);
+        EXPECT_EQ(int(sizes.size()), c.clusterCount) << "labels 0..count-1 are all used";
+        for (int i = 0; i < d.s.Size(); ++i) {
+            ASSERT_GE(c.label[i], 0);
+            ASSERT_LT(c.label[i], c.clusterCount);
+            EXPECT_EQ(d.triangle[i], d.triangle[seed[c.label[i]]]);
+            EXPECT_GE(hops[i], 0);
+            EXPECT_LE(hops[i], 6);
+        }
+    }
+}
+
+// Points pre-marked -1 are excluded: they stay -1, are never seeds, and do not carry
+// labels across (a path cut by an excluded point gives two clusters).
+TEST(IndexPropagation, ExcludedPointsStayExcluded)
+{
+    const int n = 50;
+    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const std::vector<int> triangle(n, 0);
+    const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
+    std::vector<int> initial(n, 0);
+    initial[20] = -1;
+    initial[0] = -1;
+    const Clustering c = Propagate(normals, triangle, g, Identity(n), Params(0), initial);
+    EXPECT_EQ(c.label[0], -1);
+    EXPECT_EQ(c.label[20], -1);
+    EXPECT_EQ(c.clusterCount, 2);
+    for (int i = 1; i < 20; ++i) EXPECT_EQ(c.label[i], c.label[1]);
+    for (int i = 21; i < n; ++i) EXPECT_EQ(c.label[i], c.label[21]);
+    EXPECT_NE(c.label[1], c.label[21]);
+}
+
+// Neighbours in another Gaussian triangle never share a label, even with equal normals
+// (the triangle ids are given by the caller).
+TEST(IndexPropagation, DifferentTrianglesNeverShareALabel)
+{
+    const int n = 30;
+    const std::vector<P3> normals(n, P3(0, 0, 1));
+    std::vector<int> triangle(n);
+    for (int i = 0; i < n; ++i) triangle[i] = (i / 5) % 2; // runs of 5 alternate
+    const Clustering c = Propagate(normals, triangle, gstest::MakeGraph(PathAdjacency(n)), Identity(n), Params(0));
+    EXPECT_EQ(c.clusterCount, 6);
+    for (int i = 0; i < n; ++i) EXPECT_EQ(c.label[i], i / 5);
+}
+
+} // namespace

@@ -1,0 +1,224 @@
+// ResamplePointSet on degenerate input and parameters: too few points, unusable normals,
+// duplicates, tiny clouds, invalid parameters (rejected by Validate with a message naming
+// the parameter) and cancellation through the callback.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <limits>
+#include <stdexcept>
+
+#include "pipeline_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+using gstest::P3;
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const double kNaNd = std::numeric_limits<double>::quiet_NaN();
+
+/// Expects std::invalid_argument whose message contains `needle` (case-insensitive).
+template <class F>
+void ExpectInvalidArgument(F f, const std::string &needle)
+{
+    try {
+        f();
+        ADD_FAILURE() << "no exception; expected invalid_argument mentioning '" << needle << "'";
+    } catch (const std::invalid_argument &e) {
+        std::string msg = e.what(), low = needle;
+        std::transform(msg.begin(), msg.end(), msg.begin(), [](unsigned char c) { return std::tolower(c); });
+        std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return std::tolower(c); });
+        EXPECT_NE(msg.find(low), std::string::npos) << "message '" << e.what() << "' does not name " << needle;
+    } catch (const std::exception &e) {
+        ADD_FAILURE() << "unexpected exception: " << e.what();
+    }
+}
+
+TEST(ResamplingInputs, EmptyAndOnePointMeshesAreRejected)
+{
+    ExpectInvalidArgument([] { gstest::Resample(gstest::PointSet()); }, "at least 2");
+    gstest::PointSet one;
+    one.Add(P3(0, 0, 0), P3(0, 0, 1));
+    ExpectInvalidArgument([&] { gstest::Resample(one); }, "at least 2");
+}
+
+TEST(ResamplingInputs, AllZeroNormalsAreRejected)
+{
+    gstest::PointSet s = gstest::PlaneGrid(10, 10);
+    for (P3 &n : s.normals) n = P3(0, 0, 0);
+    ExpectInvalidArgument([&] { gstest::Resample(s); }, "normal");
+}
+
+// NaN, infinite and zero normals and NaN positions among valid points are skipped,
+// counted, and mapped to -1; the rest is resampled normally.
+TEST(ResamplingInputs, UnusableVerticesAreSkippedAndCounted)
+{
+    gstest::PointSet s = gstest::FibonacciSphere(2000);
+    std::vector<char> skipped(s.Size(), 0);
+    const float inf = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < s.Size(); i += 10) {
+        switch ((i / 10) % 4) {
+        case 0: s.normals[i] = P3(kNaN, 0, 1); break;
+        case 1: s.normals[i] = P3(0, 0, 0); break;
+        case 2: s.normals[i] = P3(inf, 0, 0); break;
+        case 3: s.points[i] = P3(0, kNaN, 0); break;
+        }
+        skipped[i] = 1;
+    }
+    const ResamplingResult r = gstest::Resample(s);
+    EXPECT_EQ(r.stats.inputCount, 2000);
+    EXPECT_EQ(r.stats.skippedCount, 200);
+    // Containment is checked on the kept points only (the skipped ones have NaN data).
+    gstest::ExpectValidResult(r, s, skipped);
+    for (const Surfel &f : r.surfels) ASSERT_TRUE(std::isfinite(f.position[0]) && std::isfinite(f.normal[0]));
+}
+
+// Non-unit normals are normalized before use: scaling every normal changes nothing.
+TEST(ResamplingInputs, NormalLengthDoesNotMatter)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(3000);
+    gstest::PointSet scaled = s;
+    for (P3 &n : scaled.normals) n *= 4.f;
+    const ResamplingResult a = gstest::Resample(s), b = gstest::Resample(scaled);
+    EXPECT_EQ(a.representative, b.representative);
+}
+
+// Every point three times: k-NN lists are full of zero distances; still valid output.
+TEST(ResamplingInputs, TriplicatedPointsGiveValidSurfels)
+{
+    const gstest::PointSet base = gstest::FibonacciSphere(3000);
+    gstest::PointSet s;
+    for (int i = 0; i < base.Size(); ++i)
+        for (int c = 0; c < 3; ++c) s.Add(base.points[i], base.normals[i]);
+    const ResamplingResult r = gstest::Resample(s);
+    gstest::ExpectValidResult(r, s);
+    // Copies share a normal and are mutual nearest neighbours, so they share a cluster.
+    for (int i = 0; i < s.Size(); i += 3) {
+        EXPECT_EQ(r.representative[i], r.representative[i + 1]);
+        EXPECT_EQ(r.representative[i], r.representative[i + 2]);
+    }
+}
+
+// 40 copies of one point (all at one position with one normal): one cluster. The
+// postcondition promises non-zero ellipse axes even though the spread and the local
+// spacing are both zero.
+TEST(ResamplingInputs, FortyCopiesOfOnePoint)
+{
+    gstest::PointSet s;
+    for (int i = 0; i < 40; ++i) s.Add(P3(1, 2, 3), P3(0, 1, 0));
+    const ResamplingResult r = gstest::Resample(s);
+    ASSERT_EQ(r.surfels.size(), 1u);
+    EXPECT_EQ(r.surfels[0].memberCount, 40);
+    EXPECT_EQ(r.surfels[0].position, P3(1, 2, 3));
+    EXPECT_NEAR(r.surfels[0].normal[1], 1, 1e-6);
+    gstest::ExpectValidResult(r, s);
+}
+
+// Fewer points than k: every point sees all others.
+TEST(ResamplingInputs, FewerPointsThanK)
+{
+    gstest::PointSet s = gstest::PlaneGrid(5, 1, 0.1f);
+    ResamplingParams p;
+    p.neighborCount = 16;
+    const ResamplingResult r = gstest::Resample(s, p);
+    gstest::ExpectValidResult(r, s);
+    EXPECT_EQ(r.surfels.size(), 1u); // one plane, depth 6 reaches all 5 points
+    EXPECT_DOUBLE_EQ(r.stats.meanAdaptiveNeighbors, 4.0);
+    // Two points are the minimum.
+    gstest::PointSet two;
+    two.Add(P3(0, 0, 0), P3(0, 0, 1));
+    two.Add(P3(1, 0, 0), P3(0, 0, 1));
+    gstest::ExpectValidResult(gstest::Resample(two, p), two);
+}
+
+// Two points whose normals differ too much to be neighbours: two singletons, two surfels.
+TEST(ResamplingInputs, TwoIncompatiblePointsStaySeparate)
+{
+    gstest::PointSet s;
+    s.Add(P3(0, 0, 0), P3(0, 0, 1));
+    s.Add(P3(1, 0, 0), P3(1, 0, 0));
+    const ResamplingResult r = gstest::Resample(s);
+    EXPECT_EQ(r.surfels.size(), 2u);
+    gstest::ExpectValidResult(r, s);
+}
+
+struct BadParam
+{
+    const char *what;
+    void (*set)(ResamplingParams &);
+    const char *needle; // the parameter's name as the message spells it
+};
+
+// Absurd parameters are rejected before any work, with a message naming the parameter.
+TEST(ResamplingInputs, InvalidParametersAreRejectedByName)
+{
+    const BadParam cases[] = {
+        {"level 0", [](ResamplingParams &p) { p.subdivisionLevel = 0; }, "SubdivisionLevel"},
+        {"level 1", [](ResamplingParams &p) { p.subdivisionLevel = 1; }, "SubdivisionLevel"},
+        {"level -3", [](ResamplingParams &p) { p.subdivisionLevel = -3; }, "SubdivisionLevel"},
+        {"level 100000", [](ResamplingParams &p) { p.subdivisionLevel = 100000; }, "SubdivisionLevel"},
+        {"k 0", [](ResamplingParams &p) { p.neighborCount = 0; }, "NeighborCount"},
+        {"k 1000", [](ResamplingParams &p) { p.neighborCount = 1000; }, "NeighborCount"},
+        {"k -1", [](ResamplingParams &p) { p.neighborCount = -1; }, "NeighborCount"},
+        {"threshold 0.5", [](ResamplingParams &p) { p.normalizationThreshold = 0.5; }, "NormalizationThreshold"},
+        {"threshold 1", [](ResamplingParams &p) { p.normalizationThreshold = 1.0; }, "NormalizationThreshold"},
+        {"threshold NaN", [](ResamplingParams &p) { p.normalizationThreshold = kNaNd; }, "NormalizationThreshold"},
+        {"depth -1", [](ResamplingParams &p) { p.propagationDepth = -1; }, "PropagationDepth"},
+        {"iterations -1", [](ResamplingParams &p) { p.maxIterations = -1; }, "MaxIterations"},
+        {"weight width 0", [](ResamplingParams &p) { p.weightWidth = 0; }, "WeightWidth"},
+        {"weight width NaN", [](ResamplingParams &p) { p.weightWidth = kNaNd; }, "WeightWidth"},
+        {"margin -1", [](ResamplingParams &p) { p.coverageMargin = -1; }, "margin"},
+        {"margin NaN", [](ResamplingParams &p) { p.coverageMargin = kNaNd; }, "margin"},
+    };
+    const gstest::PointSet s = gstest::PlaneGrid(10, 10);
+    for (const BadParam &c : cases) {
+        SCOPED_TRACE(c.what);
+        ResamplingParams p;
+        c.set(p);
+        EXPECT_FALSE(p.Validate().empty());
+        ExpectInvalidArgument([&] { gstest::Resample(s, p); }, c.needle);
+    }
+    // The limits themselves are valid.
+    for (auto set : {+[](ResamplingParams &p) { p.subdivisionLevel = 2; },
+                     +[](ResamplingParams &p) { p.subdivisionLevel = 256; },
+                     +[](ResamplingParams &p) { p.neighborCount = 1; },
+                     +[](ResamplingParams &p) { p.neighborCount = 255; },
+                     +[](ResamplingParams &p) { p.propagationDepth = 0; },
+                     +[](ResamplingParams &p) { p.maxIterations = 0; },
+                     +[](ResamplingParams &p) { p.normalizationThreshold = 1.0001; }}) {
+        ResamplingParams p;
+        set(p);
+        EXPECT_EQ(p.Validate(), "");
+        gstest::ExpectValidResult(gstest::Resample(s, p), s);
+    }
+    EXPECT_EQ(ResamplingParams().Validate(), "") << "the defaults are valid";
+}
+
+// Cancellation: a callback returning false stops the run with ResamplingCancelled, at
+// whichever stage it happens. A callback returning true sees progress up to 100.
+int gCallsUntilCancel = 0;
+int gLastPercent = -1;
+bool CancelAfterSomeCalls(int percent, const char *)
+{
+    gLastPercent = percent;
+    return --gCallsUntilCancel > 0;
+}
+
+TEST(ResamplingInputs, CallbackReturningFalseCancels)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(2000);
+    OrientedPointMesh m;
+    gstest::ToMesh(s, m);
+    for (int calls : {1, 2, 3, 4}) {
+        gCallsUntilCancel = calls;
+        EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAfterSomeCalls), ResamplingCancelled)
+            << "cancel at call " << calls;
+    }
+    gCallsUntilCancel = 1000000;
+    const ResamplingResult r = ResamplePointSet(m, ResamplingParams(), CancelAfterSomeCalls);
+    EXPECT_EQ(gLastPercent, 100);
+    gstest::ExpectValidResult(r, s);
+}
+
+} // namespace

@@ -1,0 +1,255 @@
+// ResamplePointSet on analytic shapes: sharp features are never crossed, flat regions
+// give few large surfels, finer Gaussian spheres give more surfels, clusters come out
+// compact, and the output is deterministic and consistent with representative[].
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include <vcg_ext/gaussphere/surfel_mesh.h>
+
+#include "pipeline_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+using gstest::P3;
+
+// A cube sampled on a 24-cell grid per edge: 6 x 23^2 face points with the face normal,
+// edge points with the mean of two face normals and corners with the mean of three.
+// Face normals are sqrt 2 apart and an edge normal is 0.77 from its faces, both far above
+// d_max = 0.42, so no adaptive neighbourhood crosses an edge and every cluster holds points
+// of one kind only: all members of a cluster have exactly the same normal.
+class CubePipeline : public ::testing::Test
+{
+protected:
+    static const gstest::PointSet &Cube() { static const gstest::PointSet s = gstest::CubeSurface(24, true); return s; }
+    static const ResamplingResult &Result() { static const ResamplingResult r = gstest::Resample(Cube()); return r; }
+};
+
+TEST_F(CubePipeline, ResultIsValid)
+{
+    gstest::ExpectValidResult(Result(), Cube());
+    EXPECT_EQ(Result().stats.inputCount, Cube().Size());
+    EXPECT_EQ(Result().stats.skippedCount, 0);
+}
+
+TEST_F(CubePipeline, NoClusterStraddlesAnEdge)
+{
+    const auto members = gstest::MembersOf(Result());
+    for (size_t c = 0; c < members.size(); ++c) {
+        const int tag = Cube().tag[members[c][0]];
+        const P3 n = Cube().normals[members[c][0]];
+        for (int i : members[c]) {
+            EXPECT_EQ(Cube().tag[i], tag) << "surfel " << c << " mixes face/edge/corner points";
+            EXPECT_EQ(Cube().normals[i], n) << "surfel " << c << " mixes points of different faces or edges";
+        }
+        // The surfel normal of a flat cluster is exactly the shared normal.
+        EXPECT_NEAR(gstest::Dot(Result().surfels[c].normal, n), 1.0, 1e-6) << "surfel " << c;
+    }
+}
+
+// Flat faces of 529 points each give few, large surfels.
+TEST_F(CubePipeline, FlatFacesGiveFewLargeSurfels)
+{
+    const auto members = gstest::MembersOf(Result());
+    std::vector<int> perFace(6, 0);
+    int facePoints = 0;
+    for (size_t c = 0; c < members.size(); ++c) {
+        const int tag = Cube().tag[members[c][0]];
+        if (tag < 6) {
+            ++perFace[tag];
+            facePoints += int(members[c].size());
+        }
+    }
+    EXPECT_EQ(facePoints, 6 * 23 * 23);
+    for (int f = 0; f < 6; ++f) {
+        EXPECT_GE(perFace[f], 1);
+        EXPECT_LE(perFace[f], 40) << "face " << f << ": " << 23 * 23 << " coplanar points";
+    }
+    EXPECT_LT(Result().surfels.size(), Cube().Size() / 5);
+    std::printf("cube: %d points -> %zu surfels (per face: %d %d %d %d %d %d)\n", Cube().Size(),
+                Result().surfels.size(), perFace[0], perFace[1], perFace[2], perFace[3], perFace[4], perFace[5]);
+}
+
+// Without the edge points the faces are separate components of the neighbour graph.
+TEST(ResamplingPipeline, CubeFacesOnlyKeepFacesApart)
+{
+    const gstest::PointSet s = gstest::CubeSurface(16, false);
+    const ResamplingResult r = gstest::Resample(s);
+    gstest::ExpectValidResult(r, s);
+    const auto members = gstest::MembersOf(r);
+    for (const auto &m : members)
+        for (int i : m) EXPECT_EQ(s.tag[i], s.tag[m[0]]);
+}
+
+// 20k points on the unit sphere: the finer the Gaussian sphere, the more clusters (each
+// cluster's normals must fit in a smaller triangle and a smaller inscribed radius).
+TEST(ResamplingPipeline, SphereCountGrowsWithLevel)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(20000);
+    for (BasePolyhedron base : {BasePolyhedron::Octahedron, BasePolyhedron::Icosahedron}) {
+        int previous = 0;
+        for (int level : {8, 16, 24}) {
+            ResamplingParams p;
+            p.subdivisionLevel = level;
+            p.base = base;
+            const ResamplingResult r = gstest::Resample(s, p);
+            EXPECT_GT(int(r.surfels.size()), previous) << "level " << level;
+            EXPECT_LT(int(r.surfels.size()), s.Size());
+            if (level == 8) gstest::ExpectValidResult(r, s);
+            previous = int(r.surfels.size());
+        }
+    }
+}
+
+/// Largest lambda1 / lambda2 over the clusters big enough to be split.
+double WorstSplittableElongation(const gstest::PointSet &s, const ResamplingResult &r, int minSplitSize)
+{
+    double worst = 0;
+    for (const auto &m : gstest::MembersOf(r))
+        if (int(m.size()) >= minSplitSize) worst = std::max(worst, gstest::ElongationOf(s, m));
+    return worst;
+}
+
+// Planes and strips: normalization splits elongated clusters until every splittable one
+// satisfies lambda1 / lambda2 <= threshold.
+TEST(ResamplingPipeline, PlaneClustersAreCompact)
+{
+    const gstest::PointSet s = gstest::PlaneGrid(60, 60, 0.1f);
+    const ResamplingParams p;
+    const ResamplingResult r = gstest::Resample(s, p);
+    gstest::ExpectValidResult(r, s);
+    EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold);
+}
+
+TEST(ResamplingPipeline, StripClustersAreCompact)
+{
+    const gstest::PointSet s = gstest::PlaneGrid(300, 3, 0.1f);
+    const ResamplingParams p;
+    const ResamplingResult r = gstest::Resample(s, p);
+    gstest::ExpectValidResult(r, s);
+    EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold);
+    // A 3-wide cluster satisfies the threshold only up to length ~7 ((L^2-1)/8 <= 6), so
+    // the 900 points need at least 300 / 8 clusters.
+    EXPECT_GE(r.surfels.size(), 300u / 8);
+}
+
+// Without a depth limit the naive clustering of a strip is one cluster; normalization
+// alone must then cut it down to compact pieces.
+TEST(ResamplingPipeline, StripClustersAreCompactWithUnlimitedDepth)
+{
+    const gstest::PointSet s = gstest::PlaneGrid(300, 3, 0.1f);
+    ResamplingParams p;
+    p.propagationDepth = 0;
+    const ResamplingResult r = gstest::Resample(s, p);
+    gstest::ExpectValidResult(r, s);
+    EXPECT_EQ(r.stats.naiveCount, 1);
+    EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold)
+        << r.surfels.size() << " surfels after " << r.stats.iterations << " normalization rounds";
+}
+
+// The same plane and unlimited-depth strip with the early stop disabled
+// (convergenceFraction = 0: all maxIterations rounds run) come out compact, which locates
+// the failures above in the stopping rule of the normalization loop, not in the splitting.
+TEST(ResamplingPipeline, ClustersAreCompactWhenNormalizationRunsToAFixedPoint)
+{
+    for (const gstest::PointSet &s : {gstest::PlaneGrid(60, 60, 0.1f), gstest::PlaneGrid(300, 3, 0.1f)}) {
+        ResamplingParams p;
+        p.propagationDepth = 0;
+        p.convergenceFraction = 0;
+        const ResamplingResult r = gstest::Resample(s, p);
+        gstest::ExpectValidResult(r, s);
+        EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold);
+    }
+}
+
+/// A noisy sphere: normals jittered so that every stage has work (singletons, splits).
+gstest::PointSet NoisySphere(int n, unsigned seed)
+{
+    gstest::PointSet s = gstest::FibonacciSphere(n);
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> noise(0.f, 0.05f);
+    for (P3 &v : s.normals) {
+        v += P3(noise(rng), noise(rng), noise(rng));
+        v.Normalize();
+    }
+    return s;
+}
+
+bool SameSurfels(const std::vector<Surfel> &a, const std::vector<Surfel> &b)
+{
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (!(a[i].position == b[i].position) || !(a[i].normal == b[i].normal) || !(a[i].majorAxis == b[i].majorAxis) ||
+            !(a[i].minorAxis == b[i].minorAxis) || a[i].memberCount != b[i].memberCount)
+            return false;
+    return true;
+}
+
+TEST(ResamplingPipeline, IdenticalOutputForOneAndTwoThreads)
+{
+    const gstest::PointSet s = NoisySphere(20000, 21);
+    ResamplingResult one, two;
+    {
+        gstest::ThreadCount t(1);
+        one = gstest::Resample(s);
+    }
+    {
+        gstest::ThreadCount t(2);
+        two = gstest::Resample(s);
+    }
+    ASSERT_EQ(one.surfels.size(), two.surfels.size());
+    EXPECT_TRUE(SameSurfels(one.surfels, two.surfels));
+    EXPECT_EQ(one.representative, two.representative);
+    EXPECT_EQ(one.stats.naiveCount, two.stats.naiveCount);
+    EXPECT_EQ(one.stats.iterations, two.stats.iterations);
+    gstest::ExpectValidResult(one, s);
+}
+
+// representative[] and memberCount agree, also when some vertices are skipped and
+// deleted vertices are present; stats count them.
+TEST(ResamplingPipeline, RepresentativeMatchesMemberCounts)
+{
+    const gstest::PointSet s = NoisySphere(5000, 22);
+    OrientedPointMesh m;
+    gstest::ToMesh(s, m);
+    std::vector<char> skipped(s.Size(), 0);
+    for (int i = 0; i < s.Size(); i += 97) { m.vert[i].N() = P3(0, 0, 0); skipped[i] = 1; }
+    for (int i = 50; i < s.Size(); i += 211) { vcg::tri::Allocator<OrientedPointMesh>::DeleteVertex(m, m.vert[i]); skipped[i] = 2; }
+    const ResamplingResult r = ResamplePointSet(m, ResamplingParams());
+    int zero = 0, deleted = 0;
+    for (char k : skipped) { zero += k == 1; deleted += k == 2; }
+    EXPECT_EQ(r.stats.inputCount, s.Size() - deleted);
+    EXPECT_EQ(r.stats.skippedCount, zero);
+    gstest::ExpectValidResult(r, s, skipped);
+}
+
+// WriteSurfels: one vertex per surfel with position, normal, radius = |major|, quality =
+// member count and the two axis attributes.
+TEST(ResamplingPipeline, WriteSurfelsStoresAxesAndRadius)
+{
+    const gstest::PointSet s = gstest::CubeSurface(10, true);
+    const ResamplingResult r = gstest::Resample(s);
+    OrientedPointMesh out;
+    vcg::tri::Allocator<OrientedPointMesh>::AddVertices(out, 3); // replaced, not appended
+    WriteSurfels(r.surfels, out);
+    ASSERT_EQ(out.vn, int(r.surfels.size()));
+    ASSERT_EQ(out.vert.size(), r.surfels.size());
+    ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kMajorAxisAttribute));
+    ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kMinorAxisAttribute));
+    auto major = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<P3>(out, kMajorAxisAttribute);
+    auto minor = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<P3>(out, kMinorAxisAttribute);
+    for (size_t i = 0; i < r.surfels.size(); ++i) {
+        const Surfel &f = r.surfels[i];
+        EXPECT_EQ(out.vert[i].P(), f.position);
+        EXPECT_EQ(out.vert[i].N(), f.normal);
+        EXPECT_EQ(major[i], f.majorAxis);
+        EXPECT_EQ(minor[i], f.minorAxis);
+        EXPECT_FLOAT_EQ(out.vert[i].R(), f.majorAxis.Norm());
+        EXPECT_EQ(out.vert[i].Q(), float(f.memberCount));
+    }
+    EXPECT_TRUE(out.bbox.IsIn(r.surfels[0].position));
+}
+
+} // namespace

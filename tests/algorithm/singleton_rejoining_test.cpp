@@ -1,0 +1,186 @@
+// RejoinSingletons (paper, section 3.3): a one-point cluster joins the neighbouring
+// cluster whose mean normal is closest (least 1 - <n, n_cluster>), provided that normal
+// lies inside its cone of normals (chord <= maxChord); passes repeat to a fixed point.
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
+
+#include <vcg_ext/gaussphere/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/index_propagation.h>
+#include <vcg_ext/gaussphere/singleton_rejoining.h>
+
+#include "test_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+using gstest::P3;
+
+P3 Tilted(double degrees)
+{
+    const double a = degrees * gstest::kPi / 180;
+    return P3(float(std::sin(a)), 0, float(std::cos(a)));
+}
+
+const double kChord = 0.42; // d_max at n = 8: a cone of about 24 degrees
+
+Clustering Labels(const std::vector<int> &label)
+{
+    Clustering c;
+    c.label = label;
+    c.clusterCount = 0;
+    for (int l : label) c.clusterCount = std::max(c.clusterCount, l + 1);
+    return c;
+}
+
+// The singleton's normal equals a member of cluster 1, but cluster 1's mean normal is
+// tilted by 30 degrees (members at 0 and 60) while cluster 2's is tilted by 10: the score
+// uses the cluster normal, so the singleton joins cluster 2.
+TEST(SingletonRejoining, JoinsTheClusterWithTheClosestMeanNormal)
+{
+    const std::vector<P3> normals = {Tilted(0), Tilted(0), Tilted(60), Tilted(10), Tilted(10)};
+    const NeighborGraph g = gstest::MakeGraph({{1, 2, 3, 4}, {2}, {1}, {4}, {3}});
+    Clustering c = Labels({0, 1, 1, 2, 2});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 1);
+    EXPECT_EQ(c.label, (std::vector<int>{2, 1, 1, 2, 2}));
+    EXPECT_EQ(c.clusterCount, 3) << "label 0 is left empty until Compact()";
+    c.Compact();
+    EXPECT_EQ(c.clusterCount, 2);
+    EXPECT_EQ(c.label, (std::vector<int>{0, 1, 1, 0, 0}));
+}
+
+// Mirror image: with cluster 2 tilted further than cluster 1, it joins cluster 1, so the
+// choice follows the normals, not the label order or the neighbour order.
+TEST(SingletonRejoining, ChoiceFollowsNormalsNotOrder)
+{
+    const std::vector<P3> normals = {Tilted(0), Tilted(5), Tilted(5), Tilted(-20), Tilted(-20)};
+    const NeighborGraph g = gstest::MakeGraph({{3, 4, 1, 2}, {2}, {1}, {4}, {3}});
+    Clustering c = Labels({0, 1, 1, 2, 2});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 1);
+    EXPECT_EQ(c.label[0], 1);
+}
+
+// A singleton whose neighbours are all singletons stays alone: singletons never join each
+// other (two singletons could otherwise swap labels).
+TEST(SingletonRejoining, SingletonsWithOnlySingletonNeighboursStay)
+{
+    const std::vector<P3> normals = {Tilted(0), Tilted(1), Tilted(2)};
+    const NeighborGraph g = gstest::MakeGraph({{1, 2}, {0, 2}, {0, 1}});
+    Clustering c = Labels({0, 1, 2});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
+    EXPECT_EQ(c.label, (std::vector<int>{0, 1, 2}));
+}
+
+// Within one pass decisions use the clustering before the pass: in the chain
+// A - B - cluster, B joins the cluster but A (whose only neighbour B was a singleton)
+// stays. The repeated passes then let A follow B.
+TEST(SingletonRejoining, OnePassUsesThePreviousClusteringAndPassesRepeat)
+{
+    const std::vector<P3> normals(5, Tilted(0));
+    const NeighborGraph g = gstest::MakeGraph({{1}, {0, 2}, {3, 1}, {2}, {0}});
+    Clustering once = Labels({0, 1, 2, 2, 3});
+    EXPECT_EQ(RejoinSingletonsOnce(normals, g, kChord, once), 1);
+    EXPECT_EQ(once.label, (std::vector<int>{0, 2, 2, 2, 3}));
+    Clustering repeated = Labels({0, 1, 2, 2, 3});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, repeated), 3); // B, then A, then the point behind A
+    EXPECT_EQ(repeated.label, (std::vector<int>{2, 2, 2, 2, 2}));
+    Clustering capped = Labels({0, 1, 2, 2, 3});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, capped, 1), 1) << "maxPasses caps the passes";
+}
+
+// The cone: a neighbouring cluster whose mean normal is farther than maxChord is not
+// joined (15 degrees is a chord of 0.26); with a wider cone it is.
+TEST(SingletonRejoining, ClustersOutsideTheConeAreNotJoined)
+{
+    const std::vector<P3> normals = {Tilted(0), Tilted(15), Tilted(15)};
+    const NeighborGraph g = gstest::MakeGraph({{1, 2}, {2}, {1}});
+    Clustering narrow = Labels({0, 1, 1});
+    EXPECT_EQ(RejoinSingletons(normals, g, 0.25, narrow), 0);
+    EXPECT_EQ(narrow.label[0], 0);
+    Clustering wide = Labels({0, 1, 1});
+    EXPECT_EQ(RejoinSingletons(normals, g, 0.27, wide), 1);
+    EXPECT_EQ(wide.label[0], 1);
+}
+
+// The neighbour graph is directed: a cluster listing the singleton does not make the
+// singleton join it; only the singleton's own neighbourhood N(p) counts.
+TEST(SingletonRejoining, OnlyTheSingletonsOwnNeighbourhoodCounts)
+{
+    const std::vector<P3> normals(3, Tilted(0));
+    const NeighborGraph g = gstest::MakeGraph({{}, {0, 2}, {1, 0}});
+    Clustering c = Labels({0, 1, 1});
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
+    EXPECT_EQ(c.label[0], 0);
+}
+
+// Excluded points (-1) are neither moved nor used as targets.
+TEST(SingletonRejoining, ExcludedPointsAreIgnored)
+{
+    const std::vector<P3> normals(4, Tilted(0));
+    const NeighborGraph g = gstest::MakeGraph({{1, 2}, {0, 2}, {0, 1}, {0}});
+    Clustering c = Labels({0, -1, -1, 1});
+    c.clusterCount = 2;
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
+    EXPECT_EQ(c.label, (std::vector<int>{0, -1, -1, 1}));
+}
+
+// Equal scores: the smaller label wins (a deterministic tie-break).
+TEST(SingletonRejoining, TiesGoToTheSmallerLabel)
+{
+    const std::vector<P3> normals = {Tilted(0), Tilted(10), Tilted(10), Tilted(10), Tilted(10)};
+    Clustering c = Labels({0, 2, 2, 1, 1});
+    EXPECT_EQ(RejoinSingletons(normals, gstest::MakeGraph({{1, 2, 3, 4}, {2}, {1}, {4}, {3}}), kChord, c), 1);
+    EXPECT_EQ(c.label[0], 1);
+}
+
+// On a noisy sphere (many singletons after propagation) one and two threads give the
+// same labels.
+TEST(SingletonRejoining, IndependentOfThreadCount)
+{
+    gstest::PointSet s = gstest::FibonacciSphere(20000);
+    std::mt19937 rng(9);
+    std::normal_distribution<float> noise(0.f, 0.08f);
+    for (P3 &n : s.normals) {
+        n += P3(noise(rng), noise(rng), noise(rng));
+        n.Normalize();
+    }
+    const GaussianSphere sphere(16);
+    std::vector<int> triangle;
+    for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
+    const PointKdTree tree(s.points);
+    AdaptiveNeighborParams ap;
+    ap.coneChord = sphere.PaperMaxEdgeLength();
+    const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
+    IndexPropagationParams pp;
+    pp.inscribedRadius = sphere.PaperMaxEdgeLength() / (2 * std::sqrt(3.0));
+    Clustering naive;
+    naive.label.assign(s.Size(), 0);
+    PropagateIndices(s.normals, triangle, g, tree.LeafOrder(), pp, naive);
+
+    Clustering one = naive, two = naive;
+    int joinedOne, joinedTwo;
+    {
+        gstest::ThreadCount t(1);
+        joinedOne = RejoinSingletons(s.normals, g, ap.coneChord, one);
+    }
+    {
+        gstest::ThreadCount t(2);
+        joinedTwo = RejoinSingletons(s.normals, g, ap.coneChord, two);
+    }
+    EXPECT_GT(joinedOne, 500) << "the fixture must produce many singletons";
+    EXPECT_EQ(joinedOne, joinedTwo);
+    EXPECT_EQ(one.label, two.label);
+    // A point that moved was a singleton and joined the (final) cluster of one of its
+    // neighbours, whose mean normal is inside its cone.
+    const auto before = gstest::ClusterSizes(naive.label);
+    for (int i = 0; i < s.Size(); ++i) {
+        if (one.label[i] == naive.label[i]) continue;
+        EXPECT_EQ(before.at(naive.label[i]), 1) << "only singletons move";
+        bool neighbourHasIt = false;
+        for (const int *q = g.begin(i); q != g.end(i); ++q) neighbourHasIt |= *q != i && one.label[*q] == one.label[i];
+        EXPECT_TRUE(neighbourHasIt) << "point " << i << " joined a cluster outside its neighbourhood";
+    }
+}
+
+} // namespace
