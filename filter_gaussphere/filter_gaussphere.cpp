@@ -85,6 +85,17 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichInt("MaxIterations", defaults.maxIterations, "Maximum iterations",
         "Upper bound on the rounds of cluster normalization and singleton rejoining; rounds stop "
         "earlier once the number of clusters changes by less than 1% of the number of points."));
+    par.addParam(RichInt("TargetCount", 0, "Target surfel count",
+        "Exact number of surfels wanted (0 = off): the filter picks the finest Gaussian sphere level "
+        "that gives no more, then splits the clusters with the largest normal error until the count "
+        "is reached. Overrides the Gaussian sphere level. Takes precedence over Target percentage."));
+    par.addParam(RichFloat("TargetPercentage", 0.0f, "Target percentage",
+        "Number of surfels wanted as a percentage of the input points (0 = off), e.g. 10 for one "
+        "surfel per ten points. Used when Target surfel count is 0."));
+    par.addParam(RichFloat("MaxError", 0.0f, "Maximum error (fraction of diagonal)",
+        "Optional bound on the distance from every input point to the plane of its surfel, as a "
+        "fraction of the bounding box diagonal, e.g. 0.001 (0 = off). Clusters that exceed it are split "
+        "until none does. With a target count, the bound wins when both cannot hold."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
 }
@@ -130,6 +141,14 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     const float width = par.getAbsPerc("WeightWidth");
     param.weightWidth = width > 0 ? width : -1.0;
     param.maxIterations = par.getInt("MaxIterations");
+    const int targetCount = par.getInt("TargetCount");
+    const float targetPercentage = par.getFloat("TargetPercentage");
+    if (targetCount < 0 || !(targetPercentage >= 0 && targetPercentage <= 100))
+        return fail("TargetCount must not be negative and TargetPercentage must be between 0 and 100.");
+    param.targetCount = targetCount > 0 ? targetCount
+                      : targetPercentage > 0 ? std::max(1, int(std::lround(targetPercentage / 100.0 * withNormal)))
+                                             : 0;
+    param.maxErrorFraction = par.getFloat("MaxError");
     const std::string invalid = param.Validate();
     if (!invalid.empty()) {
         return fail(QString::fromStdString(invalid) + ".");
@@ -164,9 +183,21 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     Log("Gaussian sphere resampling: %d points -> %d surfels (%.2f%%), level %d, %d iteration(s), "
         "%.1f adaptive neighbours per point",
         s.inputCount - s.skippedCount, s.outputCount, 100.0 * s.outputCount / std::max(1, s.inputCount - s.skippedCount),
-        param.subdivisionLevel, s.iterations, s.meanAdaptiveNeighbors);
-    Log("Gaussian sphere resampling time: %.3f s (neighbours %.3f, propagation %.3f, normalization %.3f, surfels %.3f)",
-        s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation, s.secondsNormalization, s.secondsSurfels);
+        s.levelUsed, s.iterations, s.meanAdaptiveNeighbors);
+    Log("Gaussian sphere resampling time: %.3f s (neighbours %.3f, propagation %.3f, normalization %.3f, "
+        "refinement %.3f, surfels %.3f)",
+        s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation, s.secondsNormalization, s.secondsRefinement,
+        s.secondsSurfels);
+    if (param.targetCount > 0 || param.maxErrorFraction > 0)
+        Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) for the target "
+            "count, %d split(s) for the error bound",
+            s.levelUsed, s.levelsTried, s.splitsForTarget, s.splitsForErrorBound);
+    if (param.targetCount > 0 && s.outputCount != param.targetCount)
+        Log(GLLogStream::WARNING, "Gaussian sphere resampling: %d surfels instead of the %d requested (%s)",
+            s.outputCount, param.targetCount,
+            s.outputCount > param.targetCount
+                ? (s.splitsForErrorBound > 0 ? "the error bound needs more" : "the coarsest Gaussian sphere gives more")
+                : "no cluster left to split");
     if (s.skippedCount > 0)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling skipped %d point(s) with a zero or invalid normal",
             s.skippedCount);

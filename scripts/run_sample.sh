@@ -10,7 +10,7 @@ input="$(realpath "${1:-$here/sample_data/bunny.ply}")"
 script="$(realpath "${2:-$here/sample_data/resample_level8.mlx}")"
 out="$here/out"
 bash "$here/scripts/setup.sh"
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSSPHERE_BUILD_TESTS=OFF -DGAUSSPHERE_BUILD_BENCH=OFF >/dev/null
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)" --target stage
 mkdir -p "$out"
 name="$(basename "$input" .ply)"

@@ -1,0 +1,17 @@
+# Output-size control from scripts: TargetPercentage gives the requested count exactly, a
+# TargetCount too; MaxError adds surfels where the bound needs them.
+source "$E2E_COMMON"
+source "$FILTER_TESTS_DIR/lib.sh"
+bunny="$SAMPLE_DIR/bunny.ply"
+count=$(resample "$bunny" ten.surfel "$SAMPLE_DIR/resample_10_percent.mlx")
+echo "bunny at 10%: $count surfels"
+[ "$count" = 3483 ]   # round(0.10 x 34,834)
+"$SURFEL_CHECK" ten.surfel --count 3483 --require-ellipses --quality-sum 34834
+count=$(resample "$bunny" exact.surfel "$(script_with TargetCount=1234)")
+[ "$count" = 1234 ]
+"$SURFEL_CHECK" exact.surfel --count 1234 --require-ellipses --quality-sum 34834
+plain=$(resample "$bunny" plain.surfel "$SAMPLE_DIR/resample_level8.mlx")
+bounded=$(resample "$bunny" bounded.surfel "$(script_with MaxError=0.0005)")
+echo "bunny: $plain surfels without a bound, $bounded with MaxError 0.0005"
+[ "$bounded" -gt "$plain" ]
+grep -q "split(s) for the error bound" bounded.surfel.log
