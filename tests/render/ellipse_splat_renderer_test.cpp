@@ -197,6 +197,12 @@ struct EllipseCase
     Eigen::Vector3f majorDirection;
 };
 
+// Names the case in test listings (ctest shows it instead of the raw bytes).
+void PrintTo(const EllipseCase &c, std::ostream *out)
+{
+    *out << c.name;
+}
+
 const Eigen::Vector3f kTilted(0.8f, 0.3f, 0.5f);
 
 class SingleEllipse : public ::testing::TestWithParam<EllipseCase>
