@@ -252,13 +252,17 @@ bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, s
 
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return fail(error, "cannot open '" + path + "' for writing: " + std::strerror(errno));
+  // Written beside and renamed over `path`: a failed save leaves no truncated file behind
+  // and the previous file intact.
+  const std::string partPath = path + ".part";
+  std::ofstream out(partPath, std::ios::binary | std::ios::trunc);
+  if (!out) return fail(error, "cannot open '" + partPath + "' for writing: " + std::strerror(errno));
   const bool written = writeSurfels(out, surfels, error);
   out.close();
-  if (written && out) return true;
-  std::remove(path.c_str());  // a partial file would only fail later, when read
-  return fail(error, "cannot write '" + path + "' (disk full?)");
+  if (written && out && std::rename(partPath.c_str(), path.c_str()) == 0) return true;
+  const std::string reason = std::strerror(errno);
+  std::remove(partPath.c_str());
+  return fail(error, "cannot write '" + path + "': " + reason);
 }
 
 bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels) {

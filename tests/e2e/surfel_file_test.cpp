@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cfloat>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace {
@@ -176,8 +179,17 @@ TEST(SurfelFile, ReportsFilesThatCannotBeOpened) {
   EXPECT_FALSE(surfel_io::readSurfelFile("/nonexistent/in.surfel", surfels, error));
   EXPECT_NE(error.find("cannot open '/nonexistent/in.surfel'"), std::string::npos) << error;
   EXPECT_FALSE(surfel_io::writeSurfelFile("/nonexistent/out.surfel", surfels, error));
-  EXPECT_NE(error.find("cannot open '/nonexistent/out.surfel' for writing"), std::string::npos)
+  EXPECT_NE(error.find("cannot open '/nonexistent/out.surfel.part' for writing"), std::string::npos)
       << error;
+}
+
+TEST(SurfelFile, FailedSaveLeavesNoPartialFile) {
+  const std::string directory = testing::TempDir() + "surfel_file_not_a_file";
+  ::mkdir(directory.c_str(), 0700);  // a path a file cannot replace
+  std::string error;
+  EXPECT_FALSE(surfel_io::writeSurfelFile(directory, syntheticSurfels(3), error));
+  EXPECT_NE(error.find("cannot write '" + directory + "'"), std::string::npos) << error;
+  EXPECT_FALSE(std::ifstream(directory + ".part").good());
 }
 
 TEST(SurfelFile, EllipseFramesAreAnyNonZeroAxis) {
