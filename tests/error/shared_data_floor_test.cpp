@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <ostream>
 #include <string>
 
 using surfel_error_test::PointSet;
@@ -24,6 +25,12 @@ struct FloorCase
     const char* file;
     double maxNormalizedRms; // bound with headroom over the measured floor
 };
+
+// Names the case by its file in test listings instead of dumping its bytes.
+void PrintTo(const FloorCase& c, std::ostream* os)
+{
+    *os << c.file;
+}
 
 class SurfelErrorFloor : public ::testing::TestWithParam<FloorCase>
 {};
