@@ -10,7 +10,9 @@
 //       ours             our resampler; one row per thread count in --threads (default 1,2)
 //       ours-circular    our surfel centres measured as plain points: no ellipses, no
 //                        point-to-surfel map (shows what the metric owes to the ellipses)
-//       cgal-hierarchy   CGAL hierarchy_simplify_point_set (Pauly et al. 2002)
+//       cgal-hierarchy   CGAL hierarchy_simplify_point_set (Pauly et al. 2002), matched by
+//                        cluster size, then by variation (see MatchHierarchy)
+//       cgal-hierarchy-var  the same, cluster size capped at 4x the mean, matched by variation
 //       cgal-grid        CGAL grid_simplify_point_set
 //       meshlab-poisson  MeshLab's Point Cloud Simplification through meshlabserver (needs
 //                        --meshlabserver and an X display)
@@ -348,7 +350,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     }
 
     // The CGAL peers: match, time the algorithm at the matched parameter, measure, run as a process.
-    if (wanted("cgal-hierarchy") || wanted("cgal-grid")) {
+    if (wanted("cgal-hierarchy") || wanted("cgal-hierarchy-var") || wanted("cgal-grid")) {
         const CgalPointSet cgal(input);
         struct CgalPeer
         {
@@ -361,6 +363,16 @@ int Compare(const std::string &inputPath, const Options &opt)
         if (wanted("cgal-hierarchy")) {
             const HierarchyMatch m = MatchHierarchy(cgal, target, tolerance);
             peers.push_back({"cgal-hierarchy", m.param.ToString(), m.match,
+                             [&cgal, m](double *s) { return cgal.Hierarchy(m.param, s); },
+                             {"--size", std::to_string(m.param.maxClusterSize), "--variation",
+                              Number(m.param.maxVariation, 17)}});
+        }
+        if (wanted("cgal-hierarchy-var")) {
+            // Variation-driven: clusters may grow to 4x the mean size where the surface is flat,
+            // so the split budget goes to curved regions.
+            const int cap = int(std::ceil(4.0 * input.vn / target));
+            const HierarchyMatch m = MatchHierarchyVariation(cgal, cap, target, tolerance);
+            peers.push_back({"cgal-hierarchy-var", m.param.ToString(), m.match,
                              [&cgal, m](double *s) { return cgal.Hierarchy(m.param, s); },
                              {"--size", std::to_string(m.param.maxClusterSize), "--variation",
                               Number(m.param.maxVariation, 17)}});
@@ -452,7 +464,7 @@ int RunOne(const std::string &method, const std::string &inputPath, const std::s
         return 0;
     }
     std::vector<int> kept;
-    if (method == "cgal-hierarchy") {
+    if (method == "cgal-hierarchy" || method == "cgal-hierarchy-var") {
         kept = CgalPointSet(input).Hierarchy(hierarchy);
     } else if (method == "cgal-grid") {
         if (!(cell > 0)) throw std::invalid_argument("cgal-grid needs --cell");

@@ -87,15 +87,21 @@ HierarchyMatch MatchHierarchy(const CgalPointSet &points, int target, double tol
     if (result.match.withinTolerance || result.match.parameterBelow == 0) return result;
 
     // Stage 2: at the size giving fewer points than the target, split by variation as well.
-    const int size = int(result.match.parameterBelow);
     const int evaluationsSoFar = result.match.evaluations;
+    result = MatchHierarchyVariation(points, int(result.match.parameterBelow), target, tolerance);
+    result.match.evaluations += evaluationsSoFar;
+    return result;
+}
+
+HierarchyMatch MatchHierarchyVariation(const CgalPointSet &points, int maxClusterSize, int target, double tolerance)
+{
+    HierarchyMatch result;
     result.match = MatchCount(
         [&](double variation) {
-            return int(points.Hierarchy({size, variation}).size());
+            return int(points.Hierarchy({maxClusterSize, variation}).size());
         },
         1e-4, 1.0 / 3.0, target, tolerance, SearchDomain::Positive);
-    result.match.evaluations += evaluationsSoFar;
-    result.param = {size, result.match.parameter};
+    result.param = {maxClusterSize, result.match.parameter};
     return result;
 }
 

@@ -58,6 +58,10 @@ struct HierarchyMatch
 /// then active, which is the adaptive method the paper compares with.
 HierarchyMatch MatchHierarchy(const CgalPointSet &points, int target, double tolerance);
 
+/// Matches by the variation threshold alone, at a fixed maximum cluster size (which must give
+/// fewer points than `target` with the variation test off).
+HierarchyMatch MatchHierarchyVariation(const CgalPointSet &points, int maxClusterSize, int target, double tolerance);
+
 /// Matches the grid's cell size to `target`; `diagonal` is the input's bounding-box diagonal.
 CountMatch MatchGrid(const CgalPointSet &points, double diagonal, int target, double tolerance);
 

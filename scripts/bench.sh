@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# The benchmark: builds gsbench and the staged MeshLab, compares our resampler with CGAL's
+# hierarchy and grid simplification and MeshLab's Poisson-disk simplification at equal point
+# counts on every model, and writes the tables and plots (bench/report.py).
+#
+#   scripts/bench.sh [--quick] [models...]
+#
+# models: names of ../shared/data/NAME.ply (default: every point set there). Absent ones are
+# skipped with a reason.
+#   full run  -> bench/results/: table1.md/.csv (n = 8, every model), figure7.md/.csv/_*.png
+#                (n = 8..24 on bunny, dragon, igea), raw/*.csv (gsbench's rows), header.txt
+#   --quick   -> bench/results/quick/: the shipped sample_data bunny and fandisk, one timing
+#                run, figure 7 at n = 8 and 16 on the bunny; a smoke run of well under a minute
+#
+# Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), RUNS (timed runs per
+# figure, default 3; the median is reported).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$root/build-bench}"
+jobs="${JOBS:-2}"
+
+quick=0
+models=()
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -*) echo "bench.sh: unknown option $arg" >&2; exit 2 ;;
+    *) models+=("$arg") ;;
+  esac
+done
+
+# meshlabserver needs an X display: re-run this script inside one virtual display, after the
+# build (so that a build error is not hidden behind xvfb-run).
+if [ -z "${GSBENCH_IN_XVFB:-}" ]; then
+  if [ ! -f "$build/CMakeCache.txt" ]; then
+    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSSPHERE_BUILD_BENCH=ON
+  fi
+  cmake --build "$build" --target gsbench stage -j "$jobs"
+  GSBENCH_IN_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$@"
+fi
+
+gsbench="$build/bench/gsbench"
+meshlabserver="$build/stage/bin/meshlabserver"
+if [ "$quick" = 1 ]; then
+  data="$root/sample_data"
+  out="$root/bench/results/quick"
+  runs="${RUNS:-1}"
+  [ ${#models[@]} -gt 0 ] || models=(bunny fandisk)
+  figure7_models=(bunny)
+  figure7_levels=(16)
+else
+  data="$root/../shared/data"
+  out="$root/bench/results"
+  runs="${RUNS:-3}"
+  if [ ${#models[@]} -eq 0 ]; then
+    # The paper's models first, then the rest in alphabetical order.
+    models=(dragon igea bunny horse armadillo_43k maxplanck_25k buddha_res3 dragon_res2 fandisk rocker_arm)
+    for f in "$data"/*.ply; do
+      name="$(basename "$f" .ply)"
+      case "$name" in *_mesh) continue ;; esac
+      [[ " ${models[*]} " == *" $name "* ]] || models+=("$name")
+    done
+  fi
+  figure7_models=(bunny dragon igea)
+  figure7_levels=(12 16 20 24)
+fi
+
+raw="$out/raw"
+work="${TMPDIR:-/tmp}/gsbench-work"
+mkdir -p "$raw" "$work"
+rm -f "$raw/table1.csv" "$raw/figure7.csv"
+
+{
+  echo "Run $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git -C "$root" rev-parse --short HEAD)"
+  echo "on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores,"
+  echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: times are indicative)."
+  echo "Timed runs per figure: $runs (median)."
+} > "$out/header.txt"
+
+present=()
+for name in "${models[@]}"; do
+  if [ -f "$data/$name.ply" ]; then present+=("$name")
+  else echo "[bench] skip $name: $data/$name.ply not found"; fi
+done
+
+started=$SECONDS
+for name in "${present[@]}"; do
+  echo "[bench] table 1: $name (n = 8) at $((SECONDS - started)) s"
+  "$gsbench" compare "$data/$name.ply" --name "$name" --level 8 --runs "$runs" \
+    --csv "$raw/table1.csv" --work "$work" --meshlabserver "$meshlabserver" \
+    --methods ours,ours-circular,cgal-hierarchy,cgal-hierarchy-var,cgal-grid,meshlab-poisson,floor
+done
+
+# Figure 7: the n = 8 points come from the table-1 run above.
+for name in "${figure7_models[@]}"; do
+  if [ ! -f "$data/$name.ply" ]; then echo "[bench] skip figure 7 on $name: not found"; continue; fi
+  for level in "${figure7_levels[@]}"; do
+    echo "[bench] figure 7: $name n = $level at $((SECONDS - started)) s"
+    "$gsbench" compare "$data/$name.ply" --name "$name" --level "$level" --runs 1 --threads 2 --no-process \
+      --csv "$raw/figure7.csv" --work "$work" --meshlabserver "$meshlabserver" \
+      --methods ours,cgal-hierarchy,cgal-grid,meshlab-poisson
+  done
+done
+
+echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((SECONDS - started)) s." >> "$out/header.txt"
+# Debian's python3-matplotlib lives in the system interpreter, which a pyenv (or venv)
+# python3 earlier in PATH does not see.
+python=python3
+/usr/bin/python3 -c 'import matplotlib' 2>/dev/null && python=/usr/bin/python3
+"$python" "$root/bench/report.py" --table1 "$raw/table1.csv" --figure7 "$raw/figure7.csv" \
+  --figure7-models "${figure7_models[*]}" --out "$out" --header "$out/header.txt"
+echo "[bench] done in $((SECONDS - started)) s: $out/table1.md, $out/figure7.md"
