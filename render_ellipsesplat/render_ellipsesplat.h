@@ -51,5 +51,5 @@ private:
     bool supported = false;
     std::map<GLArea *, ViewResources> views;
     SplatSettingsPanel *panel = nullptr;
-    std::set<std::pair<int, QString>> loggedMessages; // (layer id, message) already in the log
+    std::set<std::pair<int, QString>> loggedMessages; // (layer id, or -1 for the whole view; message) logged
 };
