@@ -176,6 +176,11 @@ TEST(SurfelErrorInputs, PercentileIsNearestRank)
         bunnySized.push_back(i);
     EXPECT_EQ(vcg::tri::NearestRankPercentile(bunnySized, 99.9), 34800); // ceil(34799.166)
     EXPECT_EQ(vcg::tri::NearestRankPercentile({4.5}, 99.9), 4.5);
+    // 99.9 · 41000 / 100 rounds to just above 40959 in double precision.
+    std::vector<double> roundingTrap;
+    for (int i = 1; i <= 41000; ++i)
+        roundingTrap.push_back(i);
+    EXPECT_EQ(vcg::tri::NearestRankPercentile(roundingTrap, 99.9), 40959);
 }
 
 TEST(SurfelErrorInputs, SummaryKeepsOutlierInMaxButNotInP999AndSkipsNaN)

@@ -140,8 +140,8 @@ struct SurfelErrorStats
 /// are ≤ v. \pre `values` is non-empty, 0 < percent ≤ 100.
 inline double NearestRankPercentile(std::vector<double> values, double percent)
 {
-    // The relative shrink absorbs the rounding of percent·n/100 (99.9·1000/100 is not exactly
-    // 999 in binary), which would otherwise step to the next rank.
+    // The relative shrink absorbs the rounding of percent·n/100 (99.9·41000/100 is not exactly
+    // 40959 in binary), which would otherwise step to the next rank.
     const double exactRank = percent * double(values.size()) / 100.0 * (1.0 - 1e-12);
     const std::size_t rank =
         std::min(values.size(), std::max<std::size_t>(1, std::size_t(std::ceil(exactRank))));
