@@ -123,6 +123,38 @@ TEST(AdaptiveNeighbors, SpacingOnARegularGrid)
     }
 }
 
+// Coincident neighbours do not count towards the spacing: with every grid point three
+// times, the six nearest at a non-zero distance of an interior point are all at h.
+TEST(AdaptiveNeighbors, SpacingIgnoresCoincidentNeighbours)
+{
+    const float h = 0.25f;
+    const gstest::PointSet grid = gstest::PlaneGrid(12, 12, h);
+    gstest::PointSet s;
+    for (int i = 0; i < grid.Size(); ++i)
+        for (int c = 0; c < 3; ++c) s.Add(grid.points[i], grid.normals[i]);
+    const NeighborGraph g = Build(s, 16, 0.42);
+    for (int y = 2; y < 10; ++y)
+        for (int x = 2; x < 10; ++x)
+            for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(g.spacing[3 * (y * 12 + x) + c], h) << x << "," << y;
+    for (float sp : g.spacing) EXPECT_GT(sp, 0.f);
+}
+
+// A point whose k nearest all coincide with it has no spacing of its own: it gets the
+// median of the others'; when all points coincide there is no scale and 1e-3 is used.
+TEST(AdaptiveNeighbors, SpacingOfFullyCoincidentPointsFallsBack)
+{
+    gstest::PointSet s = gstest::PlaneGrid(10, 10, 0.5f);
+    for (int c = 0; c < 40; ++c) s.Add(P3(20, 20, 20), P3(0, 0, 1));
+    const NeighborGraph g = Build(s, 16, 0.42);
+    std::vector<float> grid(g.spacing.begin(), g.spacing.begin() + 100);
+    std::nth_element(grid.begin(), grid.begin() + 50, grid.end());
+    for (int i = 100; i < s.Size(); ++i) EXPECT_EQ(g.spacing[i], grid[50]) << i;
+
+    gstest::PointSet same;
+    for (int c = 0; c < 40; ++c) same.Add(P3(1, 2, 3), P3(0, 0, 1));
+    for (float sp : Build(same, 16, 0.42).spacing) EXPECT_FLOAT_EQ(sp, 1e-3f);
+}
+
 // Fewer points than k: every other point is examined (stride clamps to N - 1).
 TEST(AdaptiveNeighbors, FewerPointsThanK)
 {

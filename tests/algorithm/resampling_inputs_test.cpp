@@ -84,6 +84,25 @@ TEST(ResamplingInputs, NormalLengthDoesNotMatter)
     EXPECT_EQ(a.representative, b.representative);
 }
 
+// The contract skips only zero or non-finite normals: a finite normal of any length is a
+// direction. Lengths near float's range must not be mistaken for unusable ones (|n|^2
+// overflows float above ~1.8e19).
+TEST(ResamplingInputs, HugeFiniteNormalsAreUsable)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(1000);
+    gstest::PointSet huge = s;
+    for (P3 &n : huge.normals) n *= 1e20f;
+    ASSERT_TRUE(std::isfinite(huge.normals[0][0]) && std::isfinite(huge.normals[0][2]));
+    const ResamplingResult a = gstest::Resample(s);
+    try {
+        const ResamplingResult b = gstest::Resample(huge);
+        EXPECT_EQ(b.stats.skippedCount, 0);
+        EXPECT_EQ(a.representative, b.representative);
+    } catch (const std::exception &e) {
+        ADD_FAILURE() << "finite normals of length 1e20 rejected: " << e.what();
+    }
+}
+
 // Every point three times: k-NN lists are full of zero distances; still valid output.
 TEST(ResamplingInputs, TriplicatedPointsGiveValidSurfels)
 {
