@@ -76,6 +76,9 @@ rm -f "$raw/table1.csv" "$raw/figure7.csv"
   echo "on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores,"
   echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: times are indicative)."
   echo "Timed runs per figure: $runs (median)."
+  # The build uses the working tree: say so when the measured code is not the commit's.
+  dirty="$(git -C "$root" status --porcelain -- vcg_ext | awk '{print $2}' | tr '\n' ' ')"
+  [ -z "$dirty" ] || echo "Built with uncommitted changes in: $dirty"
 } > "$out/header.txt"
 
 present=()
@@ -99,7 +102,7 @@ for name in "${figure7_models[@]}"; do
     echo "[bench] figure 7: $name n = $level at $((SECONDS - started)) s"
     "$gsbench" compare "$data/$name.ply" --name "$name" --level "$level" --runs 1 --threads 2 --no-process \
       --csv "$raw/figure7.csv" --work "$work" --meshlabserver "$meshlabserver" \
-      --methods ours,cgal-hierarchy,cgal-grid,meshlab-poisson
+      --methods ours,cgal-hierarchy,cgal-hierarchy-var,cgal-grid,meshlab-poisson
   done
 done
 

@@ -79,11 +79,22 @@ CountMatch MatchCount(const std::function<int(double)> &countAt, double lo, doub
         nearer = evaluate(p);
     }
     while (bracketed() && !done() && match.evaluations < maxEvaluations) {
+        // A collapsed bracket: the count jumps over the tolerance band here.
         if (domain == SearchDomain::Integer && std::abs(b.parameter - a.parameter) <= 1) break;
+        if (domain == SearchDomain::Positive && std::abs(std::log(b.parameter / a.parameter)) < 1e-3) break;
         const Sample m = evaluate(NextParameter(a, b, target, domain));
         // Keep the half whose ends straddle the target.
         if ((a.count - target) * double(m.count - target) <= 0) b = m;
         else a = m;
+    }
+    const double bestBeforeScan = match.parameter;
+    // Counts that are monotone only on average (a grid's count jumps with the alignment of
+    // its cells on small models) can leave a collapsed bracket with no parameter in the
+    // tolerance band; parameters near the best one then often land inside it.
+    for (int step = 1; domain == SearchDomain::Positive && !done() && match.evaluations < maxEvaluations; ++step) {
+        const double offset = 0.005 * ((step + 1) / 2) * (step % 2 ? 1 : -1); // +0.5 %, -0.5 %, +1 %, ...
+        if (std::abs(offset) > 0.1) break;
+        evaluate(bestBeforeScan * (1 + offset));
     }
     match.withinTolerance = done();
     return match;
