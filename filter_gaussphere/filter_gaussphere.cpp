@@ -64,7 +64,7 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     const gs::ResamplingParams defaults;
     const float diag = m.cm.bbox.Diag();
     par.addParam(RichInt("SubdivisionLevel", defaults.subdivisionLevel, "Gaussian sphere level",
-        "Level n of the Gaussian sphere subdivision (2-256): each face of an octahedron is cut into "
+        "Level n of the Gaussian sphere subdivision (2-256): each face of an icosahedron is cut into "
         "(n-1)^2 triangles. Higher levels separate finer normal variations, giving more surfels and "
         "lower error; the paper uses 8, 16 and 24."));
     par.addParam(RichInt("NeighborCount", defaults.neighborCount, "Nearest neighbours",
@@ -88,7 +88,8 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichInt("TargetCount", 0, "Target surfel count",
         "Exact number of surfels wanted (0 = off): the filter picks the finest Gaussian sphere level "
         "that gives no more, then splits the clusters with the largest normal error until the count "
-        "is reached. Overrides the Gaussian sphere level. Takes precedence over Target percentage."));
+        "is reached (or, below what level 2 gives, merges the most similar neighbouring clusters). "
+        "Overrides the Gaussian sphere level. Takes precedence over Target percentage."));
     par.addParam(RichFloat("TargetPercentage", 0.0f, "Target percentage",
         "Number of surfels wanted as a percentage of the input points (0 = off), e.g. 10 for one "
         "surfel per ten points. Used when Target surfel count is 0."));
@@ -189,14 +190,14 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
         s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation, s.secondsNormalization, s.secondsRefinement,
         s.secondsSurfels);
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
-        Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) for the target "
-            "count, %d split(s) for the error bound",
-            s.levelUsed, s.levelsTried, s.splitsForTarget, s.splitsForErrorBound);
+        Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
+            "for the target count, %d split(s) for the error bound",
+            s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound);
     if (param.targetCount > 0 && s.outputCount != param.targetCount)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling: %d surfels instead of the %d requested (%s)",
             s.outputCount, param.targetCount,
             s.outputCount > param.targetCount
-                ? (s.splitsForErrorBound > 0 ? "the error bound needs more" : "the coarsest Gaussian sphere gives more")
+                ? "the error bound needs more"
                 : "no cluster left to split");
     if (s.skippedCount > 0)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling skipped %d point(s) with a zero or invalid normal",

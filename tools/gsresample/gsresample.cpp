@@ -38,6 +38,8 @@ int main(int argc, char **argv)
         else if (key == "--threshold") param.normalizationThreshold = std::stod(value);
         else if (key == "--min-split") param.minSplitSize = std::stoi(value);
         else if (key == "--iterations") param.maxIterations = std::stoi(value);
+        else if (key == "--weight-width") param.weightWidth = std::stod(value);
+        else if (key == "--convergence") param.convergenceFraction = std::stod(value);
         else if (key == "--target") param.targetCount = std::stoi(value);
         else if (key == "--max-error") param.maxErrorFraction = std::stod(value);
         else if (key == "--base") param.base = value == "icosahedron" ? BasePolyhedron::Icosahedron : BasePolyhedron::Octahedron;
@@ -55,12 +57,12 @@ int main(int argc, char **argv)
         const ResamplingResult r = ResamplePointSet(in, param);
         WriteSurfels(r.surfels, out);
         const ResamplingStats &s = r.stats;
-        std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f level %d "
-                    "(%d tried) splits %d+%d | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+        std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
+                    "(%d tried) splits %d+%d merges %d | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
                     "refinement %.3f surfels %.3f)\n",
                     s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
-                    s.iterations, s.meanAdaptiveNeighbors, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
-                    s.splitsForTarget, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
+                    s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.normalErrorMax, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
+                    s.splitsForTarget, s.mergesForTarget, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
                     s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -15,6 +15,12 @@
 //
 // Clusters are kept as ranges of one index array, partitioned in place, so a split costs
 // time proportional to the cluster's size and no memory beyond the ranges.
+//
+// - MergeToCount: the other direction, for targets below what the coarsest Gaussian sphere
+//   gives. Neighbouring clusters (linked by the k-NN graph) merge greedily, cheapest pair
+//   first; the cost is the Ward increase of the normal error plus that of the positional
+//   spread in units of h^2, |A||B|/(|A|+|B|) (|m_A - m_B|^2 + |c_A - c_B|^2 / h^2), so flat
+//   neighbours merge first and clusters stay compact.
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
 
@@ -26,6 +32,7 @@
 
 #include <vcg/space/point3.h>
 
+#include "adaptive_neighbors.h"
 #include "clustering.h"
 #include "surfel_generation.h"
 
@@ -141,6 +148,92 @@ private:
     std::vector<int> index_;
     std::vector<std::pair<int, int>> range_;
 };
+
+/// Merges neighbouring clusters, cheapest first, until `target` remain (or no two
+/// clusters are linked by `graph`, using every neighbour found, not only the cone).
+/// Returns the number of merges; clusters are compacted afterwards.
+inline int MergeToCount(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters)
+{
+    const int count = clusters.clusterCount;
+    if (target >= count) return 0;
+    struct Cluster { double size = 0; Eigen::Vector3d normalSum = Eigen::Vector3d::Zero(), positionSum = Eigen::Vector3d::Zero(); int version = 0; };
+    std::vector<Cluster> c(count);
+    for (size_t i = 0; i < clusters.label.size(); ++i) {
+        const int l = clusters.label[i];
+        if (l < 0) continue;
+        c[l].size += 1;
+        c[l].normalSum += detail::ToEigen(normals[i]);
+        c[l].positionSum += detail::ToEigen(points[i]);
+    }
+    // Cluster adjacency, deduplicated, from the k-NN graph.
+    std::vector<std::vector<int>> adjacent(count);
+    for (int i = 0; i < graph.Size(); ++i) {
+        const int a = clusters.label[i];
+        if (a < 0) continue;
+        const int *slot = graph.adjacency.data() + size_t(i) * graph.stride;
+        for (int t = 0; t < graph.found[i]; ++t) {
+            const int b = clusters.label[slot[t]];
+            if (b >= 0 && b != a) adjacent[a].push_back(b);
+        }
+    }
+    for (auto &list : adjacent) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    std::vector<int> parent(count);
+    for (int k = 0; k < count; ++k) parent[k] = k;
+    auto root = [&](int k) {
+        while (parent[k] != k) k = parent[k] = parent[parent[k]];
+        return k;
+    };
+    const double invH2 = 1.0 / (weightWidth * weightWidth);
+    auto cost = [&](int a, int b) {
+        const Cluster &A = c[a], &B = c[b];
+        const double ward = A.size * B.size / (A.size + B.size);
+        return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
+                       (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2);
+    };
+    struct Candidate { double cost; int a, b, versionA, versionB; bool operator<(const Candidate &o) const { return cost > o.cost || (cost == o.cost && (a > o.a || (a == o.a && b > o.b))); } };
+    std::priority_queue<Candidate> queue;
+    for (int a = 0; a < count; ++a)
+        for (int b : adjacent[a])
+            if (a < b) queue.push({cost(a, b), a, b, 0, 0});
+    int remaining = count, merges = 0;
+    while (remaining > target && !queue.empty()) {
+        const Candidate top = queue.top();
+        queue.pop();
+        if (root(top.a) != top.a || root(top.b) != top.b || c[top.a].version != top.versionA ||
+            c[top.b].version != top.versionB)
+            continue; // stale: one side merged since
+        // Merge the smaller adjacency list into the larger one.
+        int keep = top.a, gone = top.b;
+        if (adjacent[keep].size() < adjacent[gone].size()) std::swap(keep, gone);
+        parent[gone] = keep;
+        c[keep].size += c[gone].size;
+        c[keep].normalSum += c[gone].normalSum;
+        c[keep].positionSum += c[gone].positionSum;
+        ++c[keep].version;
+        std::vector<int> merged;
+        for (int x : adjacent[keep]) merged.push_back(root(x));
+        for (int x : adjacent[gone]) merged.push_back(root(x));
+        std::sort(merged.begin(), merged.end());
+        merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+        merged.erase(std::remove(merged.begin(), merged.end(), keep), merged.end());
+        adjacent[keep] = std::move(merged);
+        std::vector<int>().swap(adjacent[gone]);
+        for (int x : adjacent[keep]) {
+            const int a = std::min(keep, x), b = std::max(keep, x);
+            queue.push({cost(a, b), a, b, c[a].version, c[b].version});
+        }
+        --remaining;
+        ++merges;
+    }
+    for (int &l : clusters.label)
+        if (l >= 0) l = root(l);
+    clusters.Compact();
+    return merges;
+}
 
 } // namespace gaussphere
 } // namespace vcg

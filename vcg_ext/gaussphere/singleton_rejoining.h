@@ -2,9 +2,9 @@
 // cluster whose normal is closest to its own (least 1 - <n, n_cluster>).
 //
 // A cluster's normal is the normalized mean of its members' normals. A singleton only
-// joins a cluster whose normal lies inside its cone of normals (chord <= maxChord, the
-// same cone that selects adaptive neighbours), so rejoining never drags a cluster's
-// normal along a chain of points. Passes repeat until no singleton moves: a singleton
+// joins a cluster whose normal lies within maxChord of its own (the resampler passes the
+// propagation radius, so a rejoined point is no farther from its cluster's normal than a
+// propagated one), so rejoining never drags a cluster's normal along a chain of points. Passes repeat until no singleton moves: a singleton
 // whose neighbours were all singletons may find a cluster once they have joined one.
 // Within a pass all decisions are taken against the clustering as it was before the
 // pass, so the result does not depend on the processing order or the thread count; a
