@@ -6,6 +6,7 @@
 #include <random>
 
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/point_kdtree.h>
 #include <vcg_ext/gaussphere/gaussian_sphere.h>
 
 #include "test_support.h"
@@ -17,7 +18,7 @@ using gstest::P3;
 
 NeighborGraph Build(const gstest::PointSet &s, int k, double chord)
 {
-    const PointKdTree tree(s.points);
+    const PointGrid tree(s.points);
     AdaptiveNeighborParams p;
     p.k = k;
     p.coneChord = chord;

@@ -101,15 +101,15 @@ TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
     gstest::PointSet s = gstest::PlaneGrid(150, 3, 1.f);
     const int first = s.Size();
     for (int i = 0; i < first; ++i) s.Add(s.points[i] + P3(0, 100, 0), s.normals[i]);
-    const PointKdTree tree(s.points);
+    const PointGrid tree(s.points);
     AdaptiveNeighborParams ap;
     ap.k = 8;
     const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
     const std::vector<int> triangle(s.Size(), 5);
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
-        const int c1 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(1, PropagationReference::Seed, order)).clusterCount;
-        const int c6 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(6, PropagationReference::Seed, order)).clusterCount;
-        const Clustering c0 = Propagate(s.normals, triangle, g, tree.LeafOrder(), Params(0, PropagationReference::Seed, order));
+        const int c1 = Propagate(s.normals, triangle, g, tree.Order(), Params(1, PropagationReference::Seed, order)).clusterCount;
+        const int c6 = Propagate(s.normals, triangle, g, tree.Order(), Params(6, PropagationReference::Seed, order)).clusterCount;
+        const Clustering c0 = Propagate(s.normals, triangle, g, tree.Order(), Params(0, PropagationReference::Seed, order));
         EXPECT_GT(c1, c6);
         EXPECT_GT(c6, c0.clusterCount);
         ASSERT_EQ(c0.clusterCount, 2);
@@ -142,7 +142,7 @@ struct BumpyGrid
             }
         const GaussianSphere sphere(8);
         for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
-        const PointKdTree tree(s.points);
+        const PointGrid tree(s.points);
         AdaptiveNeighborParams ap;
         ap.coneChord = sphere.PaperMaxEdgeLength();
         graph = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);

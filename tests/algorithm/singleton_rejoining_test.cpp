@@ -148,7 +148,7 @@ TEST(SingletonRejoining, IndependentOfThreadCount)
     const GaussianSphere sphere(16);
     std::vector<int> triangle;
     for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
-    const PointKdTree tree(s.points);
+    const PointGrid tree(s.points);
     AdaptiveNeighborParams ap;
     ap.coneChord = sphere.PaperMaxEdgeLength();
     const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
@@ -156,7 +156,7 @@ TEST(SingletonRejoining, IndependentOfThreadCount)
     pp.inscribedRadius = sphere.PaperMaxEdgeLength() / (2 * std::sqrt(3.0));
     Clustering naive;
     naive.label.assign(s.Size(), 0);
-    PropagateIndices(s.normals, triangle, g, tree.LeafOrder(), pp, naive);
+    PropagateIndices(s.normals, triangle, g, tree.Order(), pp, naive);
 
     Clustering one = naive, two = naive;
     int joinedOne, joinedTwo;

@@ -17,7 +17,7 @@
 
 #include <vcg/space/point3.h>
 
-#include "point_kdtree.h"
+#include "point_grid.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -98,7 +98,7 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
 inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &points,
                                             const std::vector<vcg::Point3f> &normals,
                                             const AdaptiveNeighborParams &param,
-                                            const PointKdTree &tree)
+                                            const PointGrid &grid)
 {
     const int n = int(points.size());
     NeighborGraph g;
@@ -107,25 +107,15 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     g.count.assign(n, 0);
     g.found.assign(n, 0);
     g.spacing.assign(n, 0.f);
-    const std::vector<int> &order = tree.LeafOrder();
-
-#pragma omp parallel
-    {
-        std::vector<int> idx(g.stride);
-        std::vector<float> d2(g.stride);
-#pragma omp for schedule(dynamic, 2048)
-        for (int s = 0; s < n; ++s) {
-            const int i = order[s]; // leaf order: consecutive queries touch the same leaves
-            const int found = tree.KNearest(points[i], g.stride, i, idx.data(), d2.data());
-            int near = 0;
-            float sum = 0;
-            for (int t = 0; t < found && near < 6; ++t)
-                if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
-            g.spacing[i] = near > 0 ? sum / near : 0.f;
-            std::copy(idx.begin(), idx.begin() + found, g.adjacency.begin() + size_t(i) * g.stride);
-            g.found[i] = std::uint8_t(found);
-        }
-    }
+    grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
+        int near = 0;
+        float sum = 0;
+        for (int t = 0; t < found && near < 6; ++t)
+            if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
+        g.spacing[i] = near > 0 ? sum / near : 0.f;
+        std::copy(idx, idx + found, g.adjacency.begin() + size_t(i) * g.stride);
+        g.found[i] = std::uint8_t(found);
+    });
     FillUnknownSpacing(g.spacing);
     RestrictToCone(points, normals, param.coneChord, g);
     return g;

@@ -43,7 +43,7 @@
 #include "clustering.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
-#include "point_kdtree.h"
+#include "point_grid.h"
 #include "singleton_rejoining.h"
 #include "surfel_generation.h"
 
@@ -192,11 +192,11 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
-    const PointKdTree tree(points);
+    const PointGrid grid(points);
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = param.neighborCount;
     neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
-    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, tree);
+    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, grid);
     stats.secondsNeighbors = timer.Lap();
 
     // 2-3. Naive sampling and optimized sampling at one level.
@@ -229,7 +229,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         propagation.inscribedRadius = inscribedRadius;
         propagation.reference = param.reference;
         propagation.order = param.order;
-        PropagateIndices(normals, triangle, graph, tree.LeafOrder(), propagation, c);
+        PropagateIndices(normals, triangle, graph, grid.Order(), propagation, c);
         RejoinSingletons(normals, graph, inscribedRadius, c);
         c.Compact();
         r.naiveCount = c.clusterCount;

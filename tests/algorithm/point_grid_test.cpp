@@ -1,0 +1,105 @@
+// PointGrid::ForAllKNearest against brute force: the grid blocks, their growth to larger
+// rings, and the kd-tree fallback for isolated points must all give the exact k nearest.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <vcg_ext/gaussphere/point_grid.h>
+
+#include "test_support.h"
+
+namespace {
+
+using vcg::gaussphere::PointGrid;
+using gstest::P3;
+
+/// Sorted squared distances from point i to its k nearest others, by brute force.
+std::vector<float> BruteForceDistances(const std::vector<P3> &pts, int i, int k)
+{
+    std::vector<float> d;
+    for (int j = 0; j < int(pts.size()); ++j)
+        if (j != i) d.push_back((pts[j] - pts[i]).SquaredNorm());
+    std::sort(d.begin(), d.end());
+    d.resize(std::min<size_t>(d.size(), size_t(k)));
+    return d;
+}
+
+/// Every point is reported once, with the brute-force distances (ties may pick other
+/// indices), true distances for the reported indices, and never itself.
+void ExpectExactAllKNearest(const std::vector<P3> &pts, int k)
+{
+    const PointGrid grid(pts);
+    std::vector<int> calls(pts.size(), 0);
+    std::vector<std::vector<float>> got(pts.size());
+    std::vector<std::vector<int>> ids(pts.size());
+    grid.ForAllKNearest(k, [&](int i, const int *idx, const float *d2, int found) {
+        ++calls[i];
+        got[i].assign(d2, d2 + found);
+        ids[i].assign(idx, idx + found);
+    });
+    for (int i = 0; i < int(pts.size()); ++i) {
+        ASSERT_EQ(calls[i], 1) << "point " << i;
+        EXPECT_EQ(got[i], BruteForceDistances(pts, i, k)) << "point " << i;
+        for (size_t t = 0; t < ids[i].size(); ++t) {
+            EXPECT_NE(ids[i][t], i);
+            EXPECT_EQ(got[i][t], (pts[ids[i][t]] - pts[i]).SquaredNorm());
+        }
+    }
+    std::vector<int> order = grid.Order();
+    std::sort(order.begin(), order.end());
+    for (int i = 0; i < int(order.size()); ++i) EXPECT_EQ(order[i], i) << "Order() is a permutation";
+}
+
+std::vector<P3> SpherePoints(int n, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> g(0.f, 1.f);
+    std::vector<P3> pts;
+    for (int i = 0; i < n; ++i) {
+        P3 p(g(rng), g(rng), g(rng));
+        pts.push_back(p / p.Norm());
+    }
+    return pts;
+}
+
+TEST(PointGrid, SurfaceSamplingMatchesBruteForce)
+{
+    ExpectExactAllKNearest(SpherePoints(3000, 1), 16);
+}
+
+// Dense clumps far apart: most cells hold many points and the clumps' sparse halo forces
+// the block to grow; two lone outliers need the kd-tree fallback.
+TEST(PointGrid, UnevenDensityAndOutliersMatchBruteForce)
+{
+    std::vector<P3> pts = SpherePoints(1500, 2);
+    for (P3 &p : pts) p *= 0.01f;
+    for (const P3 &p : SpherePoints(200, 3)) pts.push_back(p * 0.3f);
+    pts.push_back(P3(50, 0, 0));
+    pts.push_back(P3(-40, 30, 10));
+    ExpectExactAllKNearest(pts, 16);
+}
+
+TEST(PointGrid, DuplicatesAndTinySetsMatchBruteForce)
+{
+    std::vector<P3> pts = SpherePoints(300, 4);
+    const std::vector<P3> copy = pts;
+    pts.insert(pts.end(), copy.begin(), copy.end());
+    for (int c = 0; c < 40; ++c) pts.push_back(copy[0]);
+    ExpectExactAllKNearest(pts, 16);
+    ExpectExactAllKNearest(std::vector<P3>(25, P3(1, 2, 3)), 16); // all coincide
+    ExpectExactAllKNearest(SpherePoints(5, 5), 16);                // fewer than k
+    ExpectExactAllKNearest(SpherePoints(1, 6), 16);                // nobody to find
+}
+
+TEST(PointGrid, PlanarGridMatchesBruteForce)
+{
+    std::vector<P3> pts;
+    for (int x = 0; x < 40; ++x)
+        for (int y = 0; y < 40; ++y) pts.push_back(P3(x * 0.1f, y * 0.1f, 0));
+    ExpectExactAllKNearest(pts, 16);
+}
+
+} // namespace
