@@ -16,19 +16,19 @@ namespace {
 using vcg::gaussphere::PointGrid;
 using gstest::P3;
 
-/// Sorted squared distances from point i to its k nearest others, by brute force.
-std::vector<float> BruteForceDistances(const std::vector<P3> &pts, int i, int k)
+/// The k nearest others of point i by brute force, sorted by (distance, index).
+std::vector<std::pair<float, int>> BruteForce(const std::vector<P3> &pts, int i, int k)
 {
-    std::vector<float> d;
+    std::vector<std::pair<float, int>> d;
     for (int j = 0; j < int(pts.size()); ++j)
-        if (j != i) d.push_back((pts[j] - pts[i]).SquaredNorm());
+        if (j != i) d.push_back({(pts[j] - pts[i]).SquaredNorm(), j});
     std::sort(d.begin(), d.end());
     d.resize(std::min<size_t>(d.size(), size_t(k)));
     return d;
 }
 
-/// Every point is reported once, with the brute-force distances (ties may pick other
-/// indices), true distances for the reported indices, and never itself.
+/// Every point is reported once, with exactly the brute-force neighbours in the same
+/// order (ties resolved by index), and never itself.
 void ExpectExactAllKNearest(const std::vector<P3> &pts, int k)
 {
     const PointGrid grid(pts);
@@ -42,10 +42,11 @@ void ExpectExactAllKNearest(const std::vector<P3> &pts, int k)
     });
     for (int i = 0; i < int(pts.size()); ++i) {
         ASSERT_EQ(calls[i], 1) << "point " << i;
-        EXPECT_EQ(got[i], BruteForceDistances(pts, i, k)) << "point " << i;
-        for (size_t t = 0; t < ids[i].size(); ++t) {
-            EXPECT_NE(ids[i][t], i);
-            EXPECT_EQ(got[i][t], (pts[ids[i][t]] - pts[i]).SquaredNorm());
+        const std::vector<std::pair<float, int>> expected = BruteForce(pts, i, k);
+        ASSERT_EQ(got[i].size(), expected.size()) << "point " << i;
+        for (size_t t = 0; t < expected.size(); ++t) {
+            EXPECT_EQ(got[i][t], expected[t].first) << "point " << i << " rank " << t;
+            EXPECT_EQ(ids[i][t], expected[t].second) << "point " << i << " rank " << t;
         }
     }
     std::vector<int> order = grid.Order();

@@ -73,7 +73,8 @@ public:
     int CellCount() const { return int(cellKey_.size()); }
 
     /// Calls sink(i, index, squaredDistance, found) for every point i with its
-    /// found = min(k, N-1) nearest other points, nearest first. Runs in parallel; sink
+    /// found = min(k, N-1) nearest other points by increasing (distance, index): ties are
+    /// resolved by index, as in PointKdTree, so the result is unique. Runs in parallel; sink
     /// must be safe to call concurrently for different i.
     template <class Sink>
     void ForAllKNearest(int k, Sink sink) const
@@ -100,10 +101,10 @@ public:
                     for (;; ++ring) {
                         if (ring > gathered) CollectShell(home, ring, shell[gathered = ring]);
                         ScanShell(shell[ring], i, k, idx.data(), d2.data(), found);
-                        const bool complete = k == 0 || (found == k && d2[k - 1] <= Squared(BlockMargin(i, home, ring)));
+                        const bool complete = k == 0 || (found == k && d2[k - 1] < Squared(BlockMargin(i, home, ring)));
                         if (complete || ring == kMaxRing) break;
                     }
-                    if (k > 0 && (found < k || d2[k - 1] > Squared(BlockMargin(i, home, ring)))) {
+                    if (k > 0 && (found < k || d2[k - 1] >= Squared(BlockMargin(i, home, ring)))) {
                         localUnresolved.push_back(i); // an isolated point: the kd-tree answers it
                         continue;
                     }
@@ -137,6 +138,7 @@ private:
     /// An occupied cell near the home cell: its point range and its box.
     struct NearbyCell { int begin, end; float low[3], high[3]; };
 
+    static bool Before(float d, int id, float otherD, int otherId) { return d < otherD || (d == otherD && id < otherId); }
     static float Squared(double v) { return float(v * v); }
 
     double ChooseCellSize(double pointsPerCell) const
@@ -264,15 +266,15 @@ private:
         std::sort(byDistance, byDistance + m);
         for (int c = 0; c < m; ++c) {
             const NearbyCell &cell = cells[byDistance[c].second];
-            if (found == k && byDistance[c].first >= d2[k - 1]) break;
+            if (found == k && byDistance[c].first > d2[k - 1]) break;
             for (int s = cell.begin; s < cell.end; ++s) {
                 const float dx = sortedX_[s] - q[0], dy = sortedY_[s] - q[1], dz = sortedZ_[s] - q[2];
                 const float d = dx * dx + dy * dy + dz * dz;
-                if (found == k && d >= d2[k - 1]) continue;
                 const int id = order_[s];
+                if (found == k && !Before(d, id, d2[k - 1], idx[k - 1])) continue;
                 if (id == i) continue;
                 int pos = found < k ? found++ : k - 1;
-                while (pos > 0 && d2[pos - 1] > d) { d2[pos] = d2[pos - 1]; idx[pos] = idx[pos - 1]; --pos; }
+                while (pos > 0 && Before(d, id, d2[pos - 1], idx[pos - 1])) { d2[pos] = d2[pos - 1]; idx[pos] = idx[pos - 1]; --pos; }
                 d2[pos] = d;
                 idx[pos] = id;
             }

@@ -43,7 +43,7 @@ public:
     /// Point indices in leaf order: neighbouring entries are close in space.
     const std::vector<int> &LeafOrder() const { return order_; }
 
-    /// The k nearest points to q, nearest first, written to index[0..found) and
+    /// The k nearest points to q by increasing (distance, index), written to index[0..found) and
     /// squaredDistance[0..found); returns found = min(k, Size()). Points with index
     /// `exclude` are skipped (pass -1 to keep all).
     int KNearest(const Point3 &q, int k, int exclude, int *index, float *squaredDistance) const
@@ -57,18 +57,18 @@ public:
         stack[top++] = {0, 0.f};
         while (top > 0) {
             const Pending p = stack[--top];
-            if (found == k && p.lowerBound >= worst) continue;
+            if (found == k && p.lowerBound > worst) continue;
             const Node &node = nodes_[p.node];
             if (node.axis < 0) {
                 for (int s = node.begin; s < node.end; ++s) {
                     const Point3 &x = leafPoints_[s];
                     const float d = (x - q).SquaredNorm();
-                    if (found == k && d >= worst) continue;
                     const int id = order_[s];
+                    if (found == k && !Before(d, id, worst, index[k - 1])) continue;
                     if (id == exclude) continue;
                     // Insertion into the sorted candidate list (k is small).
                     int pos = found < k ? found++ : k - 1;
-                    while (pos > 0 && squaredDistance[pos - 1] > d) {
+                    while (pos > 0 && Before(d, id, squaredDistance[pos - 1], index[pos - 1])) {
                         squaredDistance[pos] = squaredDistance[pos - 1];
                         index[pos] = index[pos - 1];
                         --pos;
@@ -84,13 +84,15 @@ public:
             const int farChild = delta < 0 ? node.right : p.node + 1;
             const float farBound = std::max(p.lowerBound, delta * delta);
             // Push the far side first so the near side is explored first.
-            if (found < k || farBound < worst) stack[top++] = {farChild, farBound};
+            if (found < k || farBound <= worst) stack[top++] = {farChild, farBound};
             stack[top++] = {nearChild, p.lowerBound};
         }
         return found;
     }
 
 private:
+    static bool Before(float d, int id, float otherD, int otherId) { return d < otherD || (d == otherD && id < otherId); }
+
     struct Node
     {
         int axis;   // -1 for a leaf
