@@ -60,6 +60,10 @@ for f in "$server" "$render"; do
   [ -x "$f" ] || { echo "bench_render.sh: $f missing: build the targets stage and splat_render first" >&2; exit 1; }
 done
 
+# The .mlx scripts of the tree the build was configured from (their parameters match its plugin).
+src="$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/dev/null || true)"
+mlx_dir="$here/sample_data"
+[ -n "$src" ] && [ -f "$src/sample_data/resample_level8.mlx" ] && mlx_dir="$src/sample_data"
 work="$out/work"
 rm -rf "$work"
 mkdir -p "$work"
@@ -92,7 +96,7 @@ for model in $models; do
   fi
   echo "== $model: resampling at level 8"
   t0=$(date +%s.%N)
-  if ! "$server" -i "$points" -s "$here/sample_data/resample_level8.mlx" -o "$work/$model.surfel" \
+  if ! "$server" -i "$points" -s "$mlx_dir/resample_level8.mlx" -o "$work/$model.surfel" \
       > "$work/${model}_resample.log" 2>&1; then
     echo "meshlabserver failed on $model, see $work/${model}_resample.log" >&2; exit 1
   fi
@@ -132,6 +136,17 @@ renderer="$(glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p' || 
   echo "OpenGL: ${renderer:-Mesa llvmpipe under Xvfb (glxinfo not installed)}; images ${size}x${size}, field of view 30°,"
   echo "views (azimuth/elevation in degrees) $views; ms/frame = mean of $bench_frames frames after one warm-up frame"
   echo "(\`splat_render --bench $bench_frames\`, clear + draw + glFinish). Definitions: [README.md](README.md)."
+  echo
+  if [ -f "$src/.commit" ]; then
+    echo "Code: build \`$(basename "$build")\` of a clean export of commit $(cat "$src/.commit")."
+  elif git -C "${src:-$here}" rev-parse --short HEAD >/dev/null 2>&1; then
+    dirty="$(git -C "${src:-$here}" status --porcelain -- filter_gaussphere vcg_ext render_ellipsesplat tools/splat_render \
+      io_surfel sample_data 2>/dev/null | awk '{print $2}' | tr '\n' ' ' | sed 's/ $//')"
+    echo "Code: build \`$(basename "$build")\` of commit $(git -C "${src:-$here}" rev-parse --short HEAD); uncommitted changes in the"
+    echo "resampler, renderer or scripts at run time: ${dirty:-none}."
+  fi
+  echo "Resampling plugin built $(date -u -r "$build/stage/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_gaussphere.so" '+%Y-%m-%d %H:%M UTC' 2>/dev/null || echo '?'), splat_render built $(date -u -r "$render" '+%Y-%m-%d %H:%M UTC')."
+  echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg) (timings on a shared machine are noisy, ±20 %)."
   echo
   echo "| model | input points | surfels (level 8) | resampling wall time incl. meshlabserver start (s) |"
   echo "|---|---|---|---|"

@@ -7,7 +7,7 @@ Needs numpy and matplotlib only (PNG through matplotlib.image; PLY through plyio
   render_bench.py frame SURFEL MESH OUT.surfel
   render_bench.py colorize MESH COLOURED_POINTS.ply OUT_mesh.ply
   render_bench.py metrics WORKDIR OUT.csv OUT.md      (reads WORKDIR/runs.tsv)
-  render_bench.py montage OUT.png TITLE1=IMG1 TITLE2=IMG2 ... [--crop]
+  render_bench.py montage OUT.png TITLE1=IMG1 TITLE2=IMG2 ... [--crop] [--panel=PX]
 """
 import csv
 import math
@@ -147,6 +147,9 @@ def image_metrics(mesh_png, mesh_mask_png, png, mask_png):
     core = erode(S)     # mesh silhouette less its 1-pixel rim: must be drawn
     halo = dilate(S)    # mesh silhouette plus a 1-pixel rim: may be drawn
     union = S | R
+    rim = halo & ~core  # pixels within 1 px of the mesh's silhouette boundary
+    yref, yimg = luminance(ref), luminance(img)
+    err = (yref - yimg) ** 2
     return {
         'mesh_px': int(S.sum()),
         'drawn_px': int(R.sum()),
@@ -155,8 +158,9 @@ def image_metrics(mesh_png, mesh_mask_png, png, mask_png):
         'holes_px': int((core & ~R).sum()),
         'outside': float((R & ~halo).sum() / max(R.sum(), 1)),
         'outside_strict': float((R & ~S).sum() / max(R.sum(), 1)),
-        'psnr_y': psnr(luminance(ref), luminance(img), union),
-        'psnr_y_inner': psnr(luminance(ref), luminance(img), core & R),
+        'psnr_y': psnr(yref, yimg, union),
+        'psnr_y_inner': psnr(yref, yimg, core & R),
+        'rim_error_share': float(err[union & rim].sum() / max(err[union].sum(), 1e-12)),
         'psnr_rgb': psnr(ref.reshape(-1, 3)[union.ravel()], img.reshape(-1, 3)[union.ravel()],
                          np.ones(int(union.sum()), dtype=bool)),
     }
@@ -179,7 +183,7 @@ def metrics(workdir, csv_path, md_path):
         row.update(image_metrics(ref[5], ref[6], png, mask))
         rows.append(row)
     fields = ['model', 'surfels', 'view', 'mode', 'variant', 'coverage', 'coverage_strict', 'holes_px', 'outside',
-              'outside_strict', 'psnr_y', 'psnr_y_inner', 'psnr_rgb', 'ms_per_frame', 'mesh_px', 'drawn_px']
+              'outside_strict', 'psnr_y', 'psnr_y_inner', 'rim_error_share', 'psnr_rgb', 'ms_per_frame', 'mesh_px', 'drawn_px']
     with open(csv_path, 'w', newline='') as f:
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
@@ -316,8 +320,9 @@ def main(argv):
         metrics(*argv[2:])
     elif len(argv) >= 4 and argv[1] == 'montage':
         crop = '--crop' in argv
-        panels = [a.split('=', 1) for a in argv[3:] if a != '--crop']
-        montage(argv[2], panels, crop=crop)
+        sizes = [int(a.split('=', 1)[1]) for a in argv[3:] if a.startswith('--panel=')]
+        panels = [a.split('=', 1) for a in argv[3:] if a != '--crop' and not a.startswith('--panel=')]
+        montage(argv[2], panels, crop=crop, panel_px=sizes[-1] if sizes else 640)
     else:
         print(__doc__, file=sys.stderr)
         return 2
