@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <tuple>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -26,7 +25,7 @@ struct NeighborGraph
 {
     int stride = 0;                 ///< k: slots per point
     std::vector<int> adjacency;     ///< N(i) = adjacency[i*stride, i*stride + count[i])
-    std::vector<std::uint8_t> count; ///< neighbours inside the cone
+    std::vector<std::uint8_t> count; ///< neighbours inside the cone (all found, before RestrictToCone)
     std::vector<std::uint8_t> found; ///< neighbours found (min(k, N-1)), kept ones first
     /// Mean distance to the (up to) 6 nearest neighbours at a non-zero distance; for a
     /// point whose k neighbours all coincide with it, the median spacing of the others
@@ -70,22 +69,25 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
     const int n = g.Size();
 #pragma omp parallel
     {
-        // (outside the cone, squared distance, index): kept ones first, then by distance.
-        std::vector<std::tuple<bool, float, int>> keyed(g.stride);
+        std::vector<std::uint64_t> keyed(g.stride), merged(g.stride), rejected(g.stride);
 #pragma omp for schedule(static)
         for (int i = 0; i < n; ++i) {
             int *slot = g.adjacency.data() + size_t(i) * g.stride;
             const int found = g.found[i];
+            // The slots hold two runs, each in (distance, index) order: the previous kept
+            // neighbours, then the previous rejected ones. Merging them restores the
+            // canonical order in O(k); a stable partition then applies this chord.
+            for (int t = 0; t < found; ++t)
+                keyed[t] = DistanceIndexKey((points[slot[t]] - points[i]).SquaredNorm(), slot[t]);
+            std::merge(keyed.begin(), keyed.begin() + g.count[i], keyed.begin() + g.count[i], keyed.begin() + found,
+                       merged.begin());
+            int kept = 0, dropped = 0;
             for (int t = 0; t < found; ++t) {
-                const int j = slot[t];
-                keyed[t] = std::make_tuple(normals[i].dot(normals[j]) < minDot, (points[j] - points[i]).SquaredNorm(), j);
+                const int j = int(std::uint32_t(merged[t]));
+                if (normals[i].dot(normals[j]) >= minDot) slot[kept++] = j;
+                else rejected[dropped++] = merged[t];
             }
-            std::sort(keyed.begin(), keyed.begin() + found);
-            int kept = 0;
-            for (int t = 0; t < found; ++t) {
-                slot[t] = std::get<2>(keyed[t]);
-                kept += !std::get<0>(keyed[t]);
-            }
+            for (int t = 0; t < dropped; ++t) slot[kept + t] = int(std::uint32_t(rejected[t]));
             g.count[i] = std::uint8_t(kept);
         }
     }
@@ -104,7 +106,6 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     NeighborGraph g;
     g.stride = std::max(1, std::min({param.k, 255, std::max(1, n - 1)}));
     g.adjacency.assign(size_t(n) * g.stride, -1);
-    g.count.assign(n, 0);
     g.found.assign(n, 0);
     g.spacing.assign(n, 0.f);
     grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
@@ -116,6 +117,7 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
         std::copy(idx, idx + found, g.adjacency.begin() + size_t(i) * g.stride);
         g.found[i] = std::uint8_t(found);
     });
+    g.count = g.found; // one run in (distance, index) order: everything counts as kept so far
     FillUnknownSpacing(g.spacing);
     RestrictToCone(points, normals, param.coneChord, g);
     return g;

@@ -16,8 +16,10 @@
 #define VCG_EXT_GAUSSPHERE_POINT_GRID_H
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -30,6 +32,22 @@
 
 namespace vcg {
 namespace gaussphere {
+
+/// (squared distance, index) packed so that integer order is lexicographic order: the
+/// bit pattern of a non-negative float grows with its value.
+inline std::uint64_t DistanceIndexKey(float squaredDistance, int id)
+{
+    std::uint32_t bits;
+    std::memcpy(&bits, &squaredDistance, sizeof bits);
+    return std::uint64_t(bits) << 32 | std::uint32_t(id);
+}
+inline float DistanceOfKey(std::uint64_t key)
+{
+    const std::uint32_t bits = std::uint32_t(key >> 32);
+    float d;
+    std::memcpy(&d, &bits, sizeof d);
+    return d;
+}
 
 class PointGrid
 {
@@ -65,6 +83,7 @@ public:
         cellKey_.reserve(cellStart_.size() - 1);
         for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellKey_.push_back(keyed[cellStart_[c]].first);
         BuildCellTable();
+        BuildShellOffsets();
     }
 
     /// Point indices sorted by the Morton code of their cell: a spatially coherent order.
@@ -86,6 +105,7 @@ public:
         {
             std::vector<int> idx(k + 1);
             std::vector<float> d2(k + 1);
+            std::vector<std::uint64_t> nearest(k + 1);
             std::vector<NearbyCell> shell[kMaxRing + 1];
             std::vector<int> localUnresolved;
 #pragma omp for schedule(dynamic, 64)
@@ -100,13 +120,17 @@ public:
                     int ring = 1;
                     for (;; ++ring) {
                         if (ring > gathered) CollectShell(home, ring, shell[gathered = ring]);
-                        ScanShell(shell[ring], i, k, idx.data(), d2.data(), found);
-                        const bool complete = k == 0 || (found == k && d2[k - 1] < Squared(BlockMargin(i, home, ring)));
+                        ScanShell(shell[ring], i, k, nearest.data(), found);
+                        const bool complete = k == 0 || (found == k && DistanceOfKey(nearest[k - 1]) < Squared(BlockMargin(i, home, ring)));
                         if (complete || ring == kMaxRing) break;
                     }
-                    if (k > 0 && (found < k || d2[k - 1] >= Squared(BlockMargin(i, home, ring)))) {
+                    if (k > 0 && (found < k || DistanceOfKey(nearest[k - 1]) >= Squared(BlockMargin(i, home, ring)))) {
                         localUnresolved.push_back(i); // an isolated point: the kd-tree answers it
                         continue;
+                    }
+                    for (int t = 0; t < found; ++t) {
+                        d2[t] = DistanceOfKey(nearest[t]);
+                        idx[t] = int(std::uint32_t(nearest[t]));
                     }
                     sink(i, idx.data(), d2.data(), found);
                 }
@@ -138,7 +162,6 @@ private:
     /// An occupied cell near the home cell: its point range and its box.
     struct NearbyCell { int begin, end; float low[3], high[3]; };
 
-    static bool Before(float d, int id, float otherD, int otherId) { return d < otherD || (d == otherD && id < otherId); }
     static float Squared(double v) { return float(v * v); }
 
     double ChooseCellSize(double pointsPerCell) const
@@ -224,59 +247,63 @@ private:
     }
 
     /// The occupied cells at Chebyshev distance exactly `ring` from home (ring 1 includes
-    /// home itself).
+    /// home itself), nearest to home first: home, then cells sharing a face, an edge, a corner.
     void CollectShell(const Cell &home, int ring, std::vector<NearbyCell> &out) const
     {
-        const int inner = ring == 1 ? -1 : ring - 1;
-        for (int dx = -ring; dx <= ring; ++dx)
-            for (int dy = -ring; dy <= ring; ++dy)
-                for (int dz = -ring; dz <= ring; ++dz) {
-                    if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) <= inner) continue;
-                    const Cell cell{home.x + dx, home.y + dy, home.z + dz};
-                    const int c = FindCell(cell);
-                    if (c < 0) continue;
-                    NearbyCell nc;
-                    nc.begin = cellStart_[c];
-                    nc.end = cellStart_[c + 1];
-                    const std::int64_t xyz[3] = {cell.x, cell.y, cell.z};
-                    for (int a = 0; a < 3; ++a) {
-                        nc.low[a] = float(box_.min[a] + xyz[a] * cellSize_);
-                        nc.high[a] = float(box_.min[a] + (xyz[a] + 1) * cellSize_);
-                    }
-                    out.push_back(nc);
-                }
+        for (const std::array<int, 4> &o : shellOffsets_[ring]) {
+            const Cell cell{home.x + o[1], home.y + o[2], home.z + o[3]};
+            const int c = FindCell(cell);
+            if (c < 0) continue;
+            NearbyCell nc;
+            nc.begin = cellStart_[c];
+            nc.end = cellStart_[c + 1];
+            const std::int64_t xyz[3] = {cell.x, cell.y, cell.z};
+            for (int a = 0; a < 3; ++a) {
+                nc.low[a] = float(box_.min[a] + xyz[a] * cellSize_);
+                nc.high[a] = float(box_.min[a] + (xyz[a] + 1) * cellSize_);
+            }
+            out.push_back(nc);
+        }
+    }
+
+    /// Cell offsets of each shell, by increasing length: (squared length, dx, dy, dz).
+    void BuildShellOffsets()
+    {
+        for (int ring = 1; ring <= kMaxRing; ++ring) {
+            const int inner = ring == 1 ? -1 : ring - 1;
+            for (int dx = -ring; dx <= ring; ++dx)
+                for (int dy = -ring; dy <= ring; ++dy)
+                    for (int dz = -ring; dz <= ring; ++dz)
+                        if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) > inner)
+                            shellOffsets_[ring].push_back({dx * dx + dy * dy + dz * dz, dx, dy, dz});
+            std::sort(shellOffsets_[ring].begin(), shellOffsets_[ring].end());
+        }
     }
 
     /// Adds the points of `cells` to the running k-nearest list of point i, skipping the
     /// cells whose box lies farther than the current k-th distance.
-    void ScanShell(const std::vector<NearbyCell> &cells, int i, int k, int *idx, float *d2, int &found) const
+    void ScanShell(const std::vector<NearbyCell> &cells, int i, int k, std::uint64_t *nearest, int &found) const
     {
         const Point3 &q = points_[i];
-        // Nearest cells first: the k-th distance shrinks early and prunes the rest.
-        std::pair<float, int> byDistance[(2 * kMaxRing + 1) * (2 * kMaxRing + 1) * (2 * kMaxRing + 1)];
-        const int m = int(cells.size());
-        for (int c = 0; c < m; ++c) {
-            float boxDistance = 0;
-            for (int a = 0; a < 3; ++a) {
-                const float d = std::max({cells[c].low[a] - q[a], 0.f, q[a] - cells[c].high[a]});
-                boxDistance += d * d;
+        // `cells` come nearest first (CollectShell); a cell whose box lies beyond the
+        // current k-th distance holds no better point.
+        for (const NearbyCell &cell : cells) {
+            if (found == k) {
+                float boxDistance = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const float d = std::max({cell.low[a] - q[a], 0.f, q[a] - cell.high[a]});
+                    boxDistance += d * d;
+                }
+                if (boxDistance > DistanceOfKey(nearest[k - 1])) continue;
             }
-            byDistance[c] = {boxDistance, c};
-        }
-        std::sort(byDistance, byDistance + m);
-        for (int c = 0; c < m; ++c) {
-            const NearbyCell &cell = cells[byDistance[c].second];
-            if (found == k && byDistance[c].first > d2[k - 1]) break;
             for (int s = cell.begin; s < cell.end; ++s) {
                 const float dx = sortedX_[s] - q[0], dy = sortedY_[s] - q[1], dz = sortedZ_[s] - q[2];
-                const float d = dx * dx + dy * dy + dz * dz;
-                const int id = order_[s];
-                if (found == k && !Before(d, id, d2[k - 1], idx[k - 1])) continue;
-                if (id == i) continue;
+                const std::uint64_t key = DistanceIndexKey(dx * dx + dy * dy + dz * dz, order_[s]);
+                if (found == k && key >= nearest[k - 1]) continue;
+                if (order_[s] == i) continue;
                 int pos = found < k ? found++ : k - 1;
-                while (pos > 0 && Before(d, id, d2[pos - 1], idx[pos - 1])) { d2[pos] = d2[pos - 1]; idx[pos] = idx[pos - 1]; --pos; }
-                d2[pos] = d;
-                idx[pos] = id;
+                while (pos > 0 && key < nearest[pos - 1]) { nearest[pos] = nearest[pos - 1]; --pos; }
+                nearest[pos] = key;
             }
         }
     }
@@ -303,6 +330,7 @@ private:
     std::vector<std::uint64_t> cellKey_;
     std::vector<int> table_;
     std::vector<float> sortedX_, sortedY_, sortedZ_; // coordinates in grid order
+    std::vector<std::array<int, 4>> shellOffsets_[kMaxRing + 1];
 };
 
 } // namespace gaussphere
