@@ -78,6 +78,9 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "in two through its centroid, perpendicular to its major axis (must be greater than 1)."));
     par.addParam(RichInt("MinSplitSize", defaults.minSplitSize, "Minimum cluster size to split",
         "Clusters with fewer points are never split: their shape estimate is dominated by noise."));
+    par.addParam(RichInt("MaxClusterSize", defaults.maxClusterSize, "Maximum cluster size",
+        "Clusters with more points are split whatever their shape (0 = no limit), so that flat regions "
+        "are covered by surfels of bounded size rather than a few huge ones."));
     par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
         "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
         "surfel normal, r being the distance to the cluster centroid. 0 means 1% of the bounding box "
@@ -139,6 +142,7 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     param.propagationDepth = par.getInt("PropagationDepth");
     param.normalizationThreshold = par.getFloat("NormalizationThreshold");
     param.minSplitSize = par.getInt("MinSplitSize");
+    param.maxClusterSize = par.getInt("MaxClusterSize");
     const float width = par.getAbsPerc("WeightWidth");
     param.weightWidth = width > 0 ? width : -1.0;
     param.maxIterations = par.getInt("MaxIterations");

@@ -165,3 +165,24 @@ TEST(ClusterNormalization, OnlyElongatedClustersChangeAndNewLabelsAreAppended)
 }
 
 } // namespace
+
+// A compact but large cluster (a 12 x 12 patch: lambda1/lambda2 = 1) is split only by the
+// size cap, and halves keep being split while they exceed it.
+TEST(ClusterNormalization, SizeCapSplitsLargeCompactClusters)
+{
+    std::vector<vcg::Point3f> points;
+    for (int x = 0; x < 12; ++x)
+        for (int y = 0; y < 12; ++y) points.push_back(vcg::Point3f(x * 0.1f, y * 0.1f, 0));
+    vcg::gaussphere::Clustering c;
+    c.label.assign(points.size(), 0);
+    c.clusterCount = 1;
+    vcg::gaussphere::ClusterNormalizationParams p;
+    p.minSplitSize = 6;
+    EXPECT_EQ(vcg::gaussphere::SplitElongatedClusters(points, p, c), 0) << "no cap: a square is never split";
+    p.maxClusterSize = 40;
+    EXPECT_EQ(vcg::gaussphere::SplitElongatedClusters(points, p, c), 1);
+    EXPECT_EQ(c.clusterCount, 2);
+    vcg::gaussphere::SplitElongatedClusters(points, p, c); // 72-point halves split again
+    const vcg::gaussphere::ClusterMembers members(c);
+    for (int k = 0; k < c.clusterCount; ++k) EXPECT_LE(members.Size(k), 40);
+}

@@ -122,6 +122,7 @@ TEST(ResamplingPipeline, NormalizationStopsWhenTheCountSettles)
 {
     const gstest::PointSet s = gstest::PlaneGrid(60, 60, 0.1f);
     ResamplingParams p;
+    p.maxClusterSize = 0; // shape alone decides the splits here
     const ResamplingResult settled = gstest::Resample(s, p);
     gstest::ExpectValidResult(settled, s);
     EXPECT_EQ(settled.stats.iterations, 1);

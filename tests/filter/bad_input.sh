@@ -28,6 +28,7 @@ expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with SubdivisionLevel=1)" "Subd
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NeighborCount=0)" "NeighborCount"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NormalizationThreshold=0.5)" "NormalizationThreshold"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with PropagationDepth=-3)" "PropagationDepth"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxClusterSize=-1)" "MaxClusterSize"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply

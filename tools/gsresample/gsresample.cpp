@@ -37,6 +37,7 @@ int main(int argc, char **argv)
         else if (key == "--depth") param.propagationDepth = std::stoi(value);
         else if (key == "--threshold") param.normalizationThreshold = std::stod(value);
         else if (key == "--min-split") param.minSplitSize = std::stoi(value);
+        else if (key == "--max-cluster") param.maxClusterSize = std::stoi(value);
         else if (key == "--iterations") param.maxIterations = std::stoi(value);
         else if (key == "--weight-width") param.weightWidth = std::stod(value);
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);

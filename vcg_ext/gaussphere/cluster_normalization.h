@@ -5,6 +5,8 @@
 // Clusters smaller than `minSplitSize` are left alone: the covariance of two to five
 // points is dominated by sampling noise, and splitting them mostly makes singletons
 // that rejoining merges back, inflating the count without improving the shape.
+// Clusters larger than `maxClusterSize` are split along their major axis whatever their
+// shape, so that flat regions keep surfels of bounded size.
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
@@ -22,6 +24,7 @@ struct ClusterNormalizationParams
 {
     double threshold = 6.0;  ///< split when lambda1 / lambda2 exceeds it (the paper's 6.0)
     int minSplitSize = 6;    ///< clusters with fewer points are never split
+    int maxClusterSize = 0;  ///< clusters with more points are split whatever their shape (0 = off)
 };
 
 /// One splitting pass over all clusters. Returns the number of clusters split.
@@ -44,7 +47,8 @@ inline int SplitElongatedClusters(const std::vector<vcg::Point3f> &points, const
         for (const int *i = members.begin(c); i != members.end(c); ++i)
             cov.Add(Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - mean);
         const PrincipalAxes pa = ComputePrincipalAxes(cov.Covariance());
-        if (!(pa.value[0] > 0) || pa.value[0] <= param.threshold * pa.value[1]) continue;
+        const bool tooLarge = param.maxClusterSize > 0 && members.Size(c) > param.maxClusterSize;
+        if (!(pa.value[0] > 0) || (!tooLarge && pa.value[0] <= param.threshold * pa.value[1])) continue;
         centroid[c] = mean;
         majorAxis[c] = pa.axis.col(0);
     }
