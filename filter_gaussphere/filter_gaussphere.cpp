@@ -183,6 +183,25 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     MeshModel *output = md.addNewMesh("", input->label() + " resampled", true);
     output->updateDataMask(MeshModel::MM_VERTRADIUS | MeshModel::MM_VERTQUALITY);
     gs::WriteSurfels(result.surfels, output->cm);
+    if (input->hasDataMask(MeshModel::MM_VERTCOLOR)) {
+        // Each surfel takes the mean colour of the points it represents (the cluster
+        // colours when ColorizeClusters painted them).
+        output->updateDataMask(MeshModel::MM_VERTCOLOR);
+        std::vector<vcg::Point4d> sum(result.surfels.size(), vcg::Point4d(0, 0, 0, 0));
+        std::vector<int> members(result.surfels.size(), 0);
+        for (size_t i = 0; i < in.vert.size(); ++i) {
+            const int c = result.representative[i];
+            if (c < 0) continue;
+            const vcg::Color4b &col = in.vert[i].cC();
+            sum[c] += vcg::Point4d(col[0], col[1], col[2], col[3]);
+            ++members[c];
+        }
+        for (size_t c = 0; c < sum.size(); ++c) {
+            const vcg::Point4d mean = sum[c] / std::max(1, members[c]);
+            output->cm.vert[c].C() = vcg::Color4b((unsigned char)std::lround(mean[0]), (unsigned char)std::lround(mean[1]),
+                                                  (unsigned char)std::lround(mean[2]), (unsigned char)std::lround(mean[3]));
+        }
+    }
 
     const gs::ResamplingStats &s = result.stats;
     Log("Gaussian sphere resampling: %d points -> %d surfels (%.2f%%), level %d, %d iteration(s), "
