@@ -2,6 +2,7 @@
 """Turns gsbench's raw CSV rows into the benchmark's results.
 
     report.py --table1 RAW.csv [--figure7 RAW.csv --figure7-models "A B"] --out DIR [--header TEXT_FILE]
+    report.py --control-targets RAW.csv --control-error-bound RAW.csv --out DIR [--header TEXT_FILE]
 
 Writes into DIR:
   table1.csv     every raw row of the n = 8 run, with the paper's Table 1 figures beside ours
@@ -11,11 +12,18 @@ Writes into DIR:
   figure7.csv, figure7.md, figure7_<model>.png
                  counts and errors against the Gaussian sphere level (paper's Figure 7), ours
                  and the peers at the same counts
+  control_targets.csv, control_targets.md
+                 beyond the paper: ours at an exact output size (% of the input), peers at the
+                 same count (scripts/bench_control.sh)
+  control_error_bound.csv, control_error_bound.md
+                 beyond the paper: ours under an error bound (fraction of the diagonal), whether
+                 the metric's D* stays under it, peers at the same count
 """
 import argparse
 import csv
 import math
 import os
+import statistics
 import sys
 
 # The paper's Table 1 (subdivision level 8): original points, optimized points, seconds,
@@ -383,11 +391,281 @@ def write_figure7(rows, out_dir, header):
         f.write("\n\n".join(md) + "\n")
 
 
+# ------------------------------------------------------------------------------------------------
+# Beyond the paper: ours at a target size, or under an error bound (scripts/bench_control.sh)
+
+CONTROL_PEERS = ["cgal-hierarchy", "cgal-grid", "meshlab-poisson"]
+# (csv key, heading, format) of the figures compared; "time" is resolved per peer (see time_key).
+CONTROL_METRICS = [("l21_own_rms", "L2,1 own RMS", "f"), ("l21_own_p999", "own p99.9", "f"),
+                   ("l21_blend_rms", "L2,1 blend RMS", "f"), ("l21_blend_p999", "blend p99.9", "f"),
+                   ("dstar_rms", "Δ*RMS", "e"), ("dstar_max", "Δ*max", "f"), ("dstar_p999", "Δ*p99.9", "f"),
+                   ("time", "time", "s")]
+
+
+def time_key(peer):
+    """MeshLab runs only as a process (meshlabserver): compare process times with it, and the
+    in-process times of the algorithm alone with the CGAL peers."""
+    return "time_process_s" if peer == "meshlab-poisson" else "time_alg_s"
+
+
+def control_value(row, key, peer):
+    return num(row, time_key(peer) if key == "time" else key)
+
+
+def group_rows(rows, key):
+    """{group value: rows}, groups in order of first appearance."""
+    groups = {}
+    for r in rows:
+        groups.setdefault(r[key], []).append(r)
+    return groups
+
+
+def control_wins(rows, group_key, group_label, metrics=CONTROL_METRICS):
+    """Per group (target or bound) and peer: on how many models ours is lower, per metric; and
+    every loss as (ratio ours / peer, model, group, peer, metric)."""
+    headings = [group_label, "peer"] + [h for _, h, _ in metrics]
+    lines, lost = [], []
+    for group, grows in group_rows(rows, group_key).items():
+        for peer in CONTROL_PEERS:
+            line, any_model = [group, METHOD_LABEL[peer]], False
+            for key, heading, _ in metrics:
+                won, total = 0, 0
+                for model in models_in_order(grows):
+                    o, p = pick(grows, model, "ours"), pick(grows, model, peer)
+                    if o is None or p is None or p.get("matched") == "no":
+                        continue
+                    vo, vp = control_value(o, key, peer), control_value(p, key, peer)
+                    if math.isnan(vo) or math.isnan(vp):
+                        continue
+                    total += 1
+                    if vo < vp:
+                        won += 1
+                    else:
+                        lost.append((ratio(vo, vp), model, group, peer, heading))
+                any_model |= total > 0
+                line.append(f"{won}/{total}" if total else "–")
+            if any_model:
+                lines.append(line)
+    return md_table(headings, lines), lost
+
+
+def control_losses(lost, group_label, metrics=CONTROL_METRICS, per_metric=3):
+    """The largest losses per metric (ours / peer, above 1: ours is higher)."""
+    out = []
+    for _, heading, _ in metrics:
+        worst = sorted((l for l in lost if l[4] == heading), key=lambda l: -l[0] if not math.isnan(l[0]) else 0)
+        if not worst:
+            out.append(f"- {heading}: none")
+            continue
+        shown = ", ".join(f"{m} {group_label} {g} vs {METHOD_LABEL[p]} {r:.2f}×" for r, m, g, p, _ in worst[:per_metric])
+        out.append(f"- {heading}: {len(worst)} loss(es); largest: {shown}")
+    return "\n".join(out)
+
+
+def unmatched(rows, group_key, group_label):
+    bad = [f"{r['model']} {group_label} {r[group_key]}: {METHOD_LABEL.get(r['method'], r['method'])} "
+           f"{int(r['points']):,} vs ours {int(pick(rows_of(rows, r, group_key), r['model'], 'ours')['points']):,}"
+           for r in rows if r["method"] in CONTROL_PEERS and r.get("matched") == "no"]
+    return ("Peers whose count could not be matched within ±2 % (left out of the wins): " + "; ".join(bad) + "."
+            ) if bad else "Every peer was matched to our count within ±2 %."
+
+
+def rows_of(rows, like, group_key):
+    return [r for r in rows if r[group_key] == like[group_key]]
+
+
+def control_detail(rows, group_key, group_label, extra=()):
+    """Every row: points, the compared errors, the times; `extra` are (heading, function(row))."""
+    headings = ["model", group_label, "method", "points", "% input"] + [h for _, h, _ in CONTROL_METRICS[:-1]] + \
+               ["alg s", "process s"] + [h for h, _ in extra]
+    lines = []
+    for model in models_in_order(rows):
+        for r in rows:
+            if r["model"] != model:
+                continue
+            lines.append([model, r[group_key], label(r), f"{int(r['points']):,}", f"{num(r, 'percent'):.1f}"] +
+                         [fmt(num(r, k), kind) for k, _, kind in CONTROL_METRICS[:-1]] +
+                         [fmt(num(r, "time_alg_s"), "s"), fmt(num(r, "time_process_s"), "s")] +
+                         [f(r) for _, f in extra])
+    return md_table(headings, lines)
+
+
+def write_control_csv(rows, path, derived):
+    """The raw rows plus derived columns: derived is [(name, function(row) -> str)]."""
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()) + [n for n, _ in derived])
+        writer.writeheader()
+        for r in rows:
+            writer.writerow(dict(r, **{n: fn(r) for n, fn in derived}))
+
+
+def count_error(r):
+    """|count - target| / target of a target-size row."""
+    t = num(r, "target_points")
+    return abs(int(r["points"]) - t) / t if t > 0 else math.nan
+
+
+def write_control_targets(rows, out_dir, header):
+    for r in rows:
+        r["target"] = f"{num(r, 'target_percent'):g} %"
+    write_control_csv(rows, os.path.join(out_dir, "control_targets.csv"),
+                      [("count_error", lambda r: f"{count_error(r):.6g}" if r["method"] == "ours" else "")])
+    ours = [r for r in rows if r["method"] == "ours"]
+    exact = sum(1 for r in ours if int(r["points"]) == int(r["target_points"]))
+    worst = max(ours, key=count_error)
+    wins_table, lost = control_wins(rows, "target", "target")
+    models = models_in_order(rows)
+    targets = list(group_rows(rows, "target"))
+    poisson_at = [t for t, g in group_rows(rows, "target").items() if any(r["method"] == "meshlab-poisson" for r in g)]
+
+    count_headings = ["model", "input"] + [f"{t}: points (level, +splits / −merges)" for t in targets]
+    count_lines = []
+    for model in models:
+        line = [model, f"{int(pick(rows, model, 'ours')['input_points']):,}"]
+        for t in targets:
+            o = pick([r for r in rows if r["target"] == t], model, "ours")
+            if o is None:
+                line.append("–")
+                continue
+            moves = f"+{o['splits_target']}" if int(o["splits_target"] or 0) else f"−{o['merges_target']}"
+            off = "" if int(o["points"]) == int(o["target_points"]) else \
+                f" **target {int(o['target_points']):,}, off by {100 * count_error(o):.2f} %**"
+            line.append(f"{int(o['points']):,} (n={o['level_used']}, {moves}){off}")
+        count_lines.append(line)
+
+    parts = [
+        "# Beyond the paper (1): ours at a target size against the peers at the same count",
+        header,
+        "## Summary",
+        f"{len(models)} models × targets {', '.join(targets)} of the input. Ours: `ResamplePointSet` with "
+        "`targetCount` = round(target × input) (the paper's defaults otherwise; the level search starts at "
+        "n = 8), 1 thread. Each peer is matched to our resulting count within ±2 % by one count search "
+        "(`bench/src/match_count.h`). MeshLab Poisson disk ran at: " + ", ".join(poisson_at) + ".",
+        f"**Exact size**: ours output exactly the target on {exact}/{len(ours)} runs; the largest "
+        f"|count − target| / target is {count_error(worst):.4g} ({worst['model']}, {worst['target']}).",
+        "### On how many models ours is lower",
+        "Errors: lower is better. *time*: ours / CGAL compares the in-process time of the algorithm alone "
+        "(`alg`); ours / MeshLab compares whole processes (load, run, save: `process`), since MeshLab "
+        "runs only as meshlabserver (whose start-up loads ~75 plugins, which dominates on small models).",
+        wins_table,
+        unmatched(rows, "target", "target"),
+        "### Largest losses (ours / peer; above 1× ours is higher)",
+        control_losses(lost, "at"),
+        "## Ours: count reached per target",
+        "`n` is the Gaussian sphere level the search settled on (finest level whose count stays at or "
+        "under the target); `+k` clusters split to reach the target exactly, `−k` cluster pairs merged "
+        "(targets below what level 2 gives).",
+        md_table(count_headings, count_lines),
+        "## Every run",
+        "L2,1 *own*: each input normal against the surfel representing it (ours: its cluster; peers: the "
+        "nearest point); *blend*: against the blended normal at its projection; Δ*: projection distance "
+        "on the blended MLS surface / bounding-box diagonal; p99.9: 99.9th percentile. `alg`: median "
+        "in-process time of the algorithm alone; `process`: median wall time of a process that loads, "
+        "runs and saves.",
+        control_detail(rows, "target", "target"),
+    ]
+    with open(os.path.join(out_dir, "control_targets.md"), "w") as f:
+        f.write("\n\n".join(p for p in parts if p) + "\n")
+
+
+def write_control_error_bound(rows, out_dir, header):
+    for r in rows:
+        r["bound"] = f"{num(r, 'max_error'):g}"
+    eps = lambda r: num(r, "max_error")
+    write_control_csv(rows, os.path.join(out_dir, "control_error_bound.csv"),
+                      [("dstar_max_over_bound", lambda r: f"{num(r, 'dstar_max') / eps(r):.6g}"),
+                       ("dstar_p999_over_bound", lambda r: f"{num(r, 'dstar_p999') / eps(r):.6g}"),
+                       ("own_plane_max_over_bound",
+                        lambda r: f"{num(r, 'own_plane_max') / eps(r):.6g}" if r["method"] == "ours" else "")])
+    compared = [r for r in rows if r["method"] != "floor"]
+    metrics = CONTROL_METRICS[:-1] + [("dstar_above_max_error", "points Δ* > ε", "f")] + CONTROL_METRICS[-1:]
+    wins_table, lost = control_wins(compared, "bound", "ε", metrics)
+    models = models_in_order(rows)
+    bounds = list(group_rows(rows, "bound"))
+    pct = lambda v: "–" if math.isnan(v) else f"{100 * v:.2f} %"
+
+    check_headings = ["model", "ε", "ours points (% input)", "splits for ε", "own-plane max / ε",
+                      "Δ*max", "Δ*max / ε", "Δ*p99.9 / ε", "points Δ* > ε: ours", "CGAL hierarchy",
+                      "CGAL grid", "MeshLab Poisson", "floor S' = S", "floor Δ*max / ε"]
+    check_lines = []
+    holds = {b: [0, 0, 0] for b in bounds}  # own plane holds, metric max holds, models
+    for model in models:
+        for b in bounds:
+            g = [r for r in rows if r["bound"] == b]
+            o, fl = pick(g, model, "ours"), pick(g, model, "floor")
+            if o is None:
+                continue
+            e = eps(o)
+            holds[b][0] += num(o, "own_plane_max") <= e * (1 + 1e-6)
+            holds[b][1] += num(o, "dstar_max") <= e
+            holds[b][2] += 1
+            peer = lambda m: pct(num(pick(g, model, m), "dstar_above_max_error")) if pick(g, model, m) else "–"
+            check_lines.append([
+                model, b, f"{int(o['points']):,} ({num(o, 'percent'):.1f})", o["splits_error_bound"],
+                f"{num(o, 'own_plane_max') / e:.3f}", fmt(num(o, "dstar_max")),
+                f"{num(o, 'dstar_max') / e:.2f}", f"{num(o, 'dstar_p999') / e:.2f}",
+                pct(num(o, "dstar_above_max_error")), peer("cgal-hierarchy"), peer("cgal-grid"),
+                peer("meshlab-poisson"), pct(num(fl, "dstar_above_max_error")) if fl else "–",
+                f"{num(fl, 'dstar_max') / e:.2f}" if fl else "–"])
+
+    summary_lines = []
+    for b in bounds:
+        g = [r for r in rows if r["bound"] == b and r["method"] == "ours"]
+        rat = [num(r, "dstar_max") / eps(r) for r in g]
+        frac = [num(r, "dstar_above_max_error") for r in g]
+        worst = max(g, key=lambda r: num(r, "dstar_max") / eps(r))
+        most = max(g, key=lambda r: num(r, "dstar_above_max_error"))
+        floors = [f for f in (pick([x for x in rows if x["bound"] == b], r["model"], "floor") for r in g) if f]
+        floor_ok = sum(1 for f in floors if num(f, "dstar_max") <= eps(f))
+        summary_lines.append(
+            f"- **ε = {b}**: the bound the algorithm enforces (distance to the own surfel's plane) holds on "
+            f"{holds[b][0]}/{holds[b][2]} models; the metric's Δ*max ≤ ε on {holds[b][1]}/{holds[b][2]} "
+            f"(S' = S itself: {floor_ok}/{len(floors)}). Δ*max / ε: median {statistics.median(rat):.2f}, "
+            f"range {min(rat):.2f}–{max(rat):.2f} (largest: {worst['model']}); points with Δ* > ε: median "
+            f"{pct(statistics.median(frac))}, largest {pct(num(most, 'dstar_above_max_error'))} ({most['model']}).")
+
+    parts = [
+        "# Beyond the paper (2): ours under an error bound, against the peers at the same count",
+        header,
+        "## Summary",
+        f"{len(models)} models × ε = {', '.join(bounds)} (fraction of the bounding-box diagonal). Ours: "
+        "`ResamplePointSet` at level n = 8 with `maxErrorFraction` = ε (clusters split until every point "
+        "lies within ε × diagonal of its own surfel's plane), 1 thread. Each peer is matched to our "
+        "resulting count within ±2 %. The metric's Δ* is not the bounded quantity: it projects each input "
+        "point on the blended MLS surface of all surfels (8 nearest, Gaussian weights), so Δ* ≤ ε is not "
+        "guaranteed; even S' = S (the *floor* row, every input point its own surfel) has Δ* > 0.",
+        "\n".join(summary_lines),
+        "### On how many models ours is lower (peers at our count)",
+        "*time*: ours / CGAL compares the algorithm alone in-process; ours / MeshLab whole processes "
+        "(meshlabserver).",
+        wins_table,
+        unmatched(compared, "bound", "ε"),
+        "### Largest losses (ours / peer; above 1× ours is higher)",
+        control_losses(lost, "ε =", metrics),
+        "## The bound, per model",
+        "*own-plane max / ε*: the largest distance of an input point to the plane (centre, normal) of "
+        "the surfel representing it, over ε × diagonal: what the algorithm bounds (≤ 1 expected). "
+        "*splits for ε*: clusters split beyond the level-8 clustering to meet it. The *points Δ* > ε* "
+        "columns give the fraction of input points whose metric distance exceeds ε, for ours, each "
+        "peer at our count, and S' = S.",
+        md_table(check_headings, check_lines),
+        "## Every run",
+        "As in control_targets.md; the last columns: Δ*max / ε and the fraction of points with Δ* > ε.",
+        control_detail(rows, "bound", "ε", extra=(
+            ("Δ*max / ε", lambda r: f"{num(r, 'dstar_max') / eps(r):.2f}"),
+            ("Δ* > ε", lambda r: pct(num(r, "dstar_above_max_error"))))),
+    ]
+    with open(os.path.join(out_dir, "control_error_bound.md"), "w") as f:
+        f.write("\n\n".join(p for p in parts if p) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--table1", help="raw gsbench CSV of the n = 8 comparison")
     ap.add_argument("--figure7", help="raw gsbench CSV of the level sweep")
     ap.add_argument("--figure7-models", help="space-separated models whose table-1 rows are the sweep's n = 8")
+    ap.add_argument("--control-targets", help="raw gsbench CSV of the target-size runs (bench_control.sh)")
+    ap.add_argument("--control-error-bound", help="raw gsbench CSV of the error-bound runs (bench_control.sh)")
     ap.add_argument("--out", required=True)
     ap.add_argument("--header", help="a text file whose content goes under each title (machine, date, load)")
     args = ap.parse_args()
@@ -412,6 +690,13 @@ def main():
         rows.sort(key=lambda r: (r["model"], int(r["level"])))
         if rows:
             write_figure7(rows, args.out, header)
+    for path, write in ((args.control_targets, write_control_targets),
+                        (args.control_error_bound, write_control_error_bound)):
+        if path:
+            rows = read_rows(path) if os.path.exists(path) else []
+            if not rows:
+                sys.exit(f"report.py: {path} has no rows")
+            write(rows, args.out, header)
 
 
 if __name__ == "__main__":

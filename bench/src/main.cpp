@@ -3,7 +3,7 @@
 //
 //   gsbench compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]
 //                   [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]
-//                   [--tolerance F] [--no-process]
+//                   [--tolerance F] [--no-process] [--target-percent P] [--max-error E]
 //     Runs our resampler at level N (default 8), tunes every peer in LIST to the same count
 //     (+- F, default 0.02), measures each output, and appends one CSV row per method to OUT.csv
 //     (default stdout). LIST (default: all) is a comma-separated subset of
@@ -21,9 +21,17 @@
 //     loading; "process" is the median wall time of R runs of `gsbench run` (load, run, save)
 //     or of meshlabserver, whose peak resident memory is reported too. --no-process skips the
 //     process runs (the figure-7 sweep needs only counts and errors).
+//     Beyond the paper (ResamplingParams::targetCount, maxErrorFraction), either or both:
+//       --target-percent P  ours outputs exactly round(P % of the input) surfels (targetCount;
+//                           the level N is where its level search starts)
+//       --max-error E       ours splits clusters until every point lies within E x bbox
+//                           diagonal of its own surfel's plane (maxErrorFraction)
+//     The peers are matched to ours' resulting count as always. With --max-error every row
+//     also reports the fraction of input points whose metric distance D* exceeds E, and ours'
+//     rows the largest distance to the own surfel's plane (the quantity the bound is on).
 //
 //   gsbench run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]
-//               [--variation V] [--cell C]
+//               [--variation V] [--cell C] [--target-count C] [--max-error E]
 //     The process measured by compare: load, one method, save, nothing else.
 #include <algorithm>
 #include <chrono>
@@ -125,10 +133,20 @@ double MedianSeconds(int runs, const std::function<double()> &timedRun)
 // ---------------------------------------------------------------------------------------------
 // Our resampler
 
-vcg::gaussphere::ResamplingResult RunOurs(const PointMesh &input, int level, int threads, double *seconds)
+/// What ours is asked for: the paper's level n, optionally an exact count and an error bound.
+struct OursConfig
+{
+    int level = 8;
+    int targetCount = 0;      ///< ResamplingParams::targetCount (0 = off)
+    double maxError = 0;      ///< ResamplingParams::maxErrorFraction (0 = off)
+};
+
+vcg::gaussphere::ResamplingResult RunOurs(const PointMesh &input, const OursConfig &config, int threads, double *seconds)
 {
     vcg::gaussphere::ResamplingParams param;
-    param.subdivisionLevel = level;
+    param.subdivisionLevel = config.level;
+    param.targetCount = config.targetCount;
+    param.maxErrorFraction = config.maxError;
     omp_set_num_threads(threads);
     const auto start = std::chrono::steady_clock::now();
     vcg::gaussphere::ResamplingResult result = vcg::gaussphere::ResamplePointSet(input, param);
@@ -148,6 +166,22 @@ void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, Simplified
     set.representative = result.representative;
 }
 
+/// Largest distance of an input point to the plane of its own surfel (centre, normal), over the
+/// bounding-box diagonal of the input: what maxErrorFraction bounds (the metric's D* instead
+/// projects on the blended surface of all surfels).
+double MaxOwnPlaneDistance(const PointMesh &input, const vcg::gaussphere::ResamplingResult &result)
+{
+    double worst = 0;
+    for (size_t i = 0; i < input.vert.size(); ++i) {
+        const int s = result.representative[i];
+        if (s < 0 || input.vert[i].IsD()) continue;
+        const auto &surfel = result.surfels[s];
+        const vcg::Point3d offset = vcg::Point3d::Construct(input.vert[i].cP()) - vcg::Point3d::Construct(surfel.position);
+        worst = std::max(worst, std::abs(offset.dot(vcg::Point3d::Construct(surfel.normal))));
+    }
+    return worst / input.bbox.Diag();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Results
 
@@ -160,12 +194,20 @@ struct Row
     double timeAlg = kNaN, timeProcess = kNaN, peakMegabytes = kNaN;
     bool measured = false;
     vcg::tri::SurfelErrorStats error;
+    // Beyond the paper: the run's targets (0 = off), and what they gave.
+    double targetPercent = 0, maxError = 0;
+    int targetPoints = 0;
+    int levelUsed = 0, splitsForErrorBound = 0, splitsForTarget = 0, mergesForTarget = 0; ///< ours only
+    double ownPlaneMax = kNaN;      ///< ours only: see MaxOwnPlaneDistance
+    double dstarAboveFraction = kNaN; ///< with maxError: fraction of input points with D* > maxError
 };
 
 const char *kCsvHeader =
     "model,input_points,level,method,threads,points,percent,parameters,matched,match_evaluations,"
     "time_alg_s,time_process_s,peak_mb,l21_own_rms,l21_own_max,l21_own_p999,l21_blend_rms,"
-    "l21_blend_max,l21_blend_p999,dstar_rms,dstar_max,dstar_p999,unconverged,diagonal";
+    "l21_blend_max,l21_blend_p999,dstar_rms,dstar_max,dstar_p999,unconverged,diagonal,"
+    "target_percent,target_points,max_error,level_used,splits_error_bound,splits_target,merges_target,"
+    "own_plane_max,dstar_above_max_error";
 
 std::string Number(double v, int digits = 6)
 {
@@ -191,6 +233,13 @@ std::string CsvLine(const Row &r)
          << err(e.normalizedDistance.rms) << ',' << err(e.normalizedDistance.max) << ','
          << err(e.normalizedDistance.p999) << ',' << (r.measured ? std::to_string(e.unconvergedCount) : "")
          << ',' << err(e.diagonal);
+    const bool ours = r.method == "ours";
+    auto oursInt = [&](int v) { return ours ? std::to_string(v) : std::string(); };
+    line << ',' << (r.targetPercent > 0 ? Number(r.targetPercent) : "") << ','
+         << (r.targetPoints > 0 ? std::to_string(r.targetPoints) : "") << ','
+         << (r.maxError > 0 ? Number(r.maxError) : "") << ',' << oursInt(r.levelUsed) << ','
+         << oursInt(r.splitsForErrorBound) << ',' << oursInt(r.splitsForTarget) << ',' << oursInt(r.mergesForTarget)
+         << ',' << Number(r.ownPlaneMax) << ',' << Number(r.dstarAboveFraction);
     return line.str();
 }
 
@@ -254,22 +303,38 @@ int Compare(const std::string &inputPath, const Options &opt)
     const std::string csv = opt.Get("--csv", "-");
     const std::string work = opt.Get("--work", "/tmp/gsbench");
     const std::string meshlabserver = opt.Get("--meshlabserver", "");
+    const double targetPercent = opt.Real("--target-percent", 0);
+    const double maxError = opt.Real("--max-error", 0);
     const std::vector<std::string> methods =
         Split(opt.Get("--methods", "ours,ours-circular,cgal-hierarchy,cgal-grid,meshlab-poisson,floor"));
     std::vector<int> threadCounts;
     for (const std::string &t : Split(opt.Get("--threads", "1,2"))) threadCounts.push_back(std::stoi(t));
     opt.RejectUnused();
     if (threadCounts.empty()) throw std::invalid_argument("--threads needs at least one count");
+    if (!(targetPercent >= 0 && targetPercent <= 100)) throw std::invalid_argument("--target-percent must be in (0, 100]");
+    if (!(maxError >= 0 && maxError < 1)) throw std::invalid_argument("--max-error must be in (0, 1)");
     auto wanted = [&](const std::string &m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
     if (wanted("meshlab-poisson") && meshlabserver.empty())
         throw std::invalid_argument("meshlab-poisson needs --meshlabserver");
     mkdir(work.c_str(), 0755);
     const std::string self = SelfExecutable();
     const std::string log = work + "/" + name + ".log";
-    auto outputPath = [&](const std::string &method) { return work + "/" + name + "_n" + std::to_string(level) + "_" + method + ".ply"; };
+    // Runs with a target or a bound get their own output names (the files are kept for viewing).
+    std::string variant = "_n" + std::to_string(level);
+    if (targetPercent > 0) variant += "_t" + Number(targetPercent);
+    if (maxError > 0) variant += "_e" + Number(maxError);
+    auto outputPath = [&](const std::string &method) { return work + "/" + name + variant + "_" + method + ".ply"; };
 
     PointMesh input;
     LoadPointSet(inputPath, input);
+    OursConfig config;
+    config.level = level;
+    config.maxError = maxError;
+    if (targetPercent > 0) config.targetCount = std::max(1, int(std::lround(targetPercent / 100.0 * input.vn)));
+    // The arguments that make `gsbench run ours` do the same as the in-process runs.
+    std::vector<std::string> oursArguments = {"--level", std::to_string(level)};
+    if (config.targetCount > 0) oursArguments.insert(oursArguments.end(), {"--target-count", std::to_string(config.targetCount)});
+    if (maxError > 0) oursArguments.insert(oursArguments.end(), {"--max-error", Number(maxError, 17)});
     const double diagonal = input.bbox.Diag();
     // The metric and the searches use every core; only the timed runs pin the thread count.
     const int cores = omp_get_num_procs();
@@ -282,13 +347,28 @@ int Compare(const std::string &inputPath, const Options &opt)
         r.method = method;
         r.inputPoints = input.vn;
         r.level = level;
+        r.targetPercent = targetPercent;
+        r.targetPoints = config.targetCount;
+        r.maxError = maxError;
         return r;
     };
     auto measure = [&](Row &r, const SimplifiedSet &set) {
         omp_set_num_threads(cores);
-        r.error = Evaluate(input, set);
+        std::vector<float> distance;
+        r.error = Evaluate(input, set, maxError > 0 ? &distance : nullptr);
         r.measured = true;
         r.points = set.Count();
+        if (maxError > 0) {
+            // D* > E per point, over the points the metric measured (the distance is not NaN).
+            const double limit = maxError * r.error.diagonal;
+            size_t above = 0, defined = 0;
+            for (float d : distance) {
+                if (std::isnan(d)) continue;
+                ++defined;
+                above += d > limit;
+            }
+            r.dstarAboveFraction = defined ? double(above) / defined : kNaN;
+        }
     };
     auto finish = [&](Row &r) {
         Announce(r);
@@ -300,6 +380,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     {
         std::vector<int> reference; // representative[] of the first thread count, to check the others
         vcg::tri::SurfelErrorStats error;
+        double errorAboveFraction = kNaN;
         // Without an "ours" row, one untimed run is enough to fix the target.
         const int oursRuns = wanted("ours") ? runs : 1;
         if (!wanted("ours")) threadCounts.resize(1);
@@ -308,11 +389,18 @@ int Compare(const std::string &inputPath, const Options &opt)
             Row r = newRow("ours");
             r.threads = threads;
             r.parameters = "n=" + std::to_string(level);
+            if (config.targetCount > 0) r.parameters += " target=" + std::to_string(config.targetCount);
+            if (maxError > 0) r.parameters += " max_error=" + Number(maxError);
             r.timeAlg = MedianSeconds(oursRuns, [&]() {
                 double s = 0;
-                result = RunOurs(input, level, threads, &s);
+                result = RunOurs(input, config, threads, &s);
                 return s;
             });
+            r.levelUsed = result.stats.levelUsed;
+            r.splitsForErrorBound = result.stats.splitsForErrorBound;
+            r.splitsForTarget = result.stats.splitsForTarget;
+            r.mergesForTarget = result.stats.mergesForTarget;
+            r.ownPlaneMax = MaxOwnPlaneDistance(input, result);
             if (reference.empty() || result.representative != reference) {
                 if (!reference.empty())
                     std::fprintf(stderr, "  warning: ours with %d threads differs from %d threads\n", threads,
@@ -320,16 +408,20 @@ int Compare(const std::string &inputPath, const Options &opt)
                 ToSimplifiedSet(result, ours);
                 measure(r, ours);
                 error = r.error;
+                errorAboveFraction = r.dstarAboveFraction;
                 if (reference.empty()) reference = result.representative;
             } else {
                 r.error = error; // identical output: identical figures
+                r.dstarAboveFraction = errorAboveFraction;
                 r.measured = true;
                 r.points = ours.Count();
             }
             if (process && wanted("ours")) {
                 const ProcessFigures f = MeasureProcess(runs, [&]() {
-                    return RunChild({self, "run", "ours", inputPath, outputPath("ours"), "--level",
-                                     std::to_string(level), "--threads", std::to_string(threads)}, log);
+                    std::vector<std::string> args = {self, "run", "ours", inputPath, outputPath("ours"), "--threads",
+                                                     std::to_string(threads)};
+                    args.insert(args.end(), oursArguments.begin(), oursArguments.end());
+                    return RunChild(args, log);
                 });
                 r.timeProcess = f.seconds;
                 r.peakMegabytes = f.peakMegabytes;
@@ -453,12 +545,16 @@ int RunOne(const std::string &method, const std::string &inputPath, const std::s
     hierarchy.maxClusterSize = opt.Int("--size", hierarchy.maxClusterSize);
     hierarchy.maxVariation = opt.Real("--variation", hierarchy.maxVariation);
     const double cell = opt.Real("--cell", 0);
+    OursConfig config;
+    config.level = level;
+    config.targetCount = opt.Int("--target-count", 0);
+    config.maxError = opt.Real("--max-error", 0);
     opt.RejectUnused();
 
     PointMesh input, output;
     LoadPointSet(inputPath, input);
     if (method == "ours") {
-        const auto result = RunOurs(input, level, threads, nullptr);
+        const auto result = RunOurs(input, config, threads, nullptr);
         vcg::gaussphere::WriteSurfels(result.surfels, output);
         SavePointSet(output, outputPath, true);
         return 0;
@@ -482,9 +578,9 @@ int Usage(const char *program)
     std::fprintf(stderr,
                  "usage: %s compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]\n"
                  "                  [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]\n"
-                 "                  [--tolerance F] [--no-process]\n"
+                 "                  [--tolerance F] [--no-process] [--target-percent P] [--max-error E]\n"
                  "       %s run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]\n"
-                 "                  [--variation V] [--cell C]\n"
+                 "                  [--variation V] [--cell C] [--target-count C] [--max-error E]\n"
                  "(see the comment at the top of bench/src/main.cpp)\n",
                  program, program);
     return 2;

@@ -76,9 +76,11 @@ void MakeIdentitySet(const PointMesh &input, SimplifiedSet &set)
     set.representative = all;
 }
 
-vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set)
+vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
+                                    std::vector<float> *perPointDistance)
 {
-    return vcg::tri::ComputeSurfelError(input, set.mesh, vcg::tri::SurfelErrorParams(), set.Attributes());
+    return vcg::tri::ComputeSurfelError(input, set.mesh, vcg::tri::SurfelErrorParams(), set.Attributes(),
+                                        perPointDistance);
 }
 
 } // namespace gsbench

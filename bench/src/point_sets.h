@@ -42,8 +42,10 @@ struct SimplifiedSet
 /// S' = S: every input point is its own circular surfel. Its error is the metric's floor.
 void MakeIdentitySet(const PointMesh &input, SimplifiedSet &set);
 
-/// Error of `set` against `input` with the metric's default parameters.
-vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set);
+/// Error of `set` against `input` with the metric's default parameters. `perPointDistance`, if
+/// given, receives d(q, S') per input vertex (NaN where undefined), in model units.
+vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
+                                    std::vector<float> *perPointDistance = nullptr);
 
 } // namespace gsbench
 
