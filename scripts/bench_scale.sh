@@ -4,7 +4,7 @@
 # size with 2 and 1 OpenMP threads, every measurement in a fresh process. Writes
 # bench/scale/results.md and bench/scale/results.csv.
 #
-#   scripts/bench_scale.sh            full run (~5-10 minutes on 2 cores, peak ~4.5 GB)
+#   scripts/bench_scale.sh            full run (~6 minutes on 2 cores, peak RSS ~3.5 GB)
 #   scripts/bench_scale.sh --quick    1 million points only (~15 s)
 set -euo pipefail
 

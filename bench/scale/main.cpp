@@ -11,7 +11,8 @@
 //       diagnostic: how many points the neighbour grid hands to its kd-tree fallback
 //
 // Shapes: "drilled-box" (analytic, sharp edges) or a model NAME of --data-dir (default: the
-// shared data folder), densified from NAME_mesh.ply. Default: dragon.
+// shared data folder), densified from NAME_mesh.ply. Default: dragon. Generator options:
+// --order random|morton, --noise SIGMA, --coincident M, --outlier D (point_generator.h).
 //
 // What one measurement reports (see process_probe.h for how peaks are taken):
 // - stage times (ResamplingStats), total wall and CPU time, per point;
@@ -72,6 +73,9 @@ GeneratorParams GeneratorFrom(const Options &o)
     g.count = std::stoll(Get(o, "points", "1000000"));
     g.seed = std::stoull(Get(o, "seed", "1"));
     g.noise = std::stod(Get(o, "noise", "0"));
+    g.order = Get(o, "order", g.order);
+    g.coincident = std::stoll(Get(o, "coincident", "0"));
+    g.outlier = std::stod(Get(o, "outlier", "0"));
     return g;
 }
 
@@ -365,7 +369,8 @@ void WriteMarkdown(const std::vector<Measurement> &runs, const Options &o, const
        << "Written by `scripts/bench_scale.sh` (program: `bench/scale/main.cpp`); analysis and "
           "recommendations: [README.md](README.md).\n\n"
        << "- input: " << Get(o, "shape", "dragon") << " densified (seed " << Get(o, "seed", "1") << ", noise "
-       << Get(o, "noise", "0") << "), generated in memory; default parameters (level 8, k = 16)\n"
+       << Get(o, "noise", "0") << ", point order " << Get(o, "order", "random")
+       << "), generated in memory; default parameters (level 8, k = 16)\n"
        << "- commit: " << Get(o, "commit", "unknown") << "\n"
        << "- machine: " << MachineDescription() << "\n"
        << "- load average (1/5/15 min) at start: " << loadStart << ", at end: " << loadEnd
@@ -466,7 +471,7 @@ int Bench(const Options &o)
     if (csvPath.empty() || mdPath.empty()) throw std::runtime_error("bench needs --csv FILE and --md FILE");
     // The child gets the generator and resampler options unchanged.
     std::vector<std::string> passOn;
-    for (const char *key : {"shape", "seed", "noise", "level", "data-dir", "allocator"})
+    for (const char *key : {"shape", "seed", "noise", "order", "coincident", "outlier", "level", "data-dir", "allocator"})
         if (o.count(key)) { passOn.push_back(std::string("--") + key); passOn.push_back(o.at(key)); }
 
     const std::string loadStart = LoadAverage();

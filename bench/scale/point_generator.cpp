@@ -133,6 +133,33 @@ void SampleDrilledBox(const GeneratorParams &params, OrientedPointMesh &out)
     }
 }
 
+/// Sorts the vertices along a Z-order curve of their positions (21 bits per axis).
+void SortMorton(OrientedPointMesh &mesh)
+{
+    vcg::Box3f box;
+    for (const auto &v : mesh.vert) box.Add(v.cP());
+    const double scale = double((1 << 21) - 1) / std::max(1e-30, double(std::max({box.DimX(), box.DimY(), box.DimZ()})));
+    auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
+        v &= 0x1fffff;
+        v = (v | v << 32) & 0x1f00000000ffffull;
+        v = (v | v << 16) & 0x1f0000ff0000ffull;
+        v = (v | v << 8) & 0x100f00f00f00f00full;
+        v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+        v = (v | v << 2) & 0x1249249249249249ull;
+        return v;
+    };
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(mesh.vert.size());
+    for (size_t i = 0; i < keyed.size(); ++i) {
+        std::uint64_t key = 0;
+        for (int a = 0; a < 3; ++a) key |= spread(std::uint64_t((mesh.vert[i].cP()[a] - box.min[a]) * scale)) << a;
+        keyed[i] = {key, std::uint32_t(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<vcg::Point3f> p(keyed.size()), n(keyed.size());
+    for (size_t i = 0; i < keyed.size(); ++i) { p[i] = mesh.vert[keyed[i].second].cP(); n[i] = mesh.vert[keyed[i].second].cN(); }
+    for (size_t i = 0; i < keyed.size(); ++i) { mesh.vert[i].P() = p[i]; mesh.vert[i].N() = n[i]; }
+}
+
 } // namespace
 
 void GeneratePoints(const GeneratorParams &params, OrientedPointMesh &out)
@@ -141,7 +168,17 @@ void GeneratePoints(const GeneratorParams &params, OrientedPointMesh &out)
     out.Clear();
     if (params.shape == "drilled-box") SampleDrilledBox(params, out);
     else SampleMesh(params, out);
+    if (params.order == "morton") SortMorton(out);
+    else if (params.order != "random") throw std::runtime_error("unknown order " + params.order);
+    const size_t count = out.vert.size();
+    for (size_t i = count - size_t(std::min<long long>(params.coincident, (long long)count - 1)); i < count; ++i)
+        out.vert[i].P() = out.vert[0].cP(), out.vert[i].N() = out.vert[0].cN();
     vcg::tri::UpdateBounding<OrientedPointMesh>::Box(out);
+    if (params.outlier > 0) {
+        const vcg::Point3f away = out.bbox.max + vcg::Point3f(1, 1, 1) * float(params.outlier * out.bbox.Diag() / std::sqrt(3.0));
+        out.vert[count - 1].P() = away;
+        vcg::tri::UpdateBounding<OrientedPointMesh>::Box(out);
+    }
 }
 
 void WriteOrientedPly(const OrientedPointMesh &mesh, const std::string &path)

@@ -29,6 +29,12 @@ struct GeneratorParams
     long long count = 1000000;    ///< points to generate
     std::uint64_t seed = 1;
     double noise = 0;             ///< position noise sigma, as a fraction of the bbox diagonal
+    /// Point order: "random" (the sampling order: no spatial coherence, the worst case for
+    /// caches) or "morton" (sorted along a Z-order curve, like a well-ordered scan).
+    std::string order = "random";
+    // Degenerate inputs for the worst-case review (0 = off):
+    long long coincident = 0;     ///< the last M points become copies of the first one
+    double outlier = 0;           ///< the last point moves D bbox diagonals away from the box
 };
 
 /// Fills `out` (cleared first) with params.count oriented points (positions and unit
