@@ -104,3 +104,27 @@ TEST(PointGrid, PlanarGridMatchesBruteForce)
 }
 
 } // namespace
+
+namespace {
+
+// A stray point 10^5 model sizes away must not stretch the cells: the grid keeps about
+// six points per cell for the model (before, every point fell into one cell and the
+// search became quadratic), and the stray point is still answered exactly.
+TEST(PointGrid, FarOutlierDoesNotStretchTheCells)
+{
+    std::vector<P3> pts = SpherePoints(20000, 7);
+    pts.push_back(P3(1e5f, 0, 0));
+    const PointGrid grid(pts);
+    EXPECT_GT(grid.CellCount(), 20000 / 20);
+    int reported = 0;
+    grid.ForAllKNearest(16, [&](int i, const int *, const float *d2, int found) {
+        if (i == 20000) {
+            EXPECT_EQ(found, 16);
+            EXPECT_GT(d2[0], 1e9f);
+            ++reported;
+        }
+    });
+    EXPECT_EQ(reported, 1);
+}
+
+} // namespace

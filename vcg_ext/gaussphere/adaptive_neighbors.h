@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -97,10 +98,13 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
 /// Postcondition: graph.Size() == points.size(); every kept neighbour j != i is among
 /// the k nearest of i and satisfies the cone test. Runs in parallel with OpenMP; the
 /// result does not depend on the thread count.
+/// `progress` as in PointGrid::ForAllKNearest; if it stops the search, the graph is
+/// returned empty (Size() == 0).
 inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &points,
                                             const std::vector<vcg::Point3f> &normals,
                                             const AdaptiveNeighborParams &param,
-                                            const PointGrid &grid)
+                                            const PointGrid &grid,
+                                            const std::function<bool(double)> &progress = nullptr)
 {
     const int n = int(points.size());
     NeighborGraph g;
@@ -108,7 +112,7 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     g.adjacency.assign(size_t(n) * g.stride, -1);
     g.found.assign(n, 0);
     g.spacing.assign(n, 0.f);
-    grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
+    const bool complete = grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
         int near = 0;
         float sum = 0;
         for (int t = 0; t < found && near < 6; ++t)
@@ -116,7 +120,8 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
         g.spacing[i] = near > 0 ? sum / near : 0.f;
         std::copy(idx, idx + found, g.adjacency.begin() + size_t(i) * g.stride);
         g.found[i] = std::uint8_t(found);
-    });
+    }, progress);
+    if (!complete) return NeighborGraph();
     g.count = g.found; // one run in (distance, index) order: everything counts as kept so far
     FillUnknownSpacing(g.spacing);
     RestrictToCone(points, normals, param.coneChord, g);

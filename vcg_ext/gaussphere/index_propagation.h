@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -41,9 +42,12 @@ struct IndexPropagationParams
 /// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i; seeds are
 /// taken in `seedOrder` (a permutation of the points). Postcondition: every non-excluded
 /// point has a label in [0, clusterCount); points of one cluster share a triangle.
-inline void PropagateIndices(const std::vector<vcg::Point3f> &normals, const std::vector<int> &triangle,
+/// `progress(fraction)` is called now and then; when it returns false labelling stops
+/// and the function returns false (the clustering is then incomplete).
+inline bool PropagateIndices(const std::vector<vcg::Point3f> &normals, const std::vector<int> &triangle,
                              const NeighborGraph &graph, const std::vector<int> &seedOrder,
-                             const IndexPropagationParams &param, Clustering &clusters)
+                             const IndexPropagationParams &param, Clustering &clusters,
+                             const std::function<bool(double)> &progress = nullptr)
 {
     const int unlabelled = -2;
     for (int &l : clusters.label) l = (l == -1) ? -1 : unlabelled;
@@ -51,7 +55,10 @@ inline void PropagateIndices(const std::vector<vcg::Point3f> &normals, const std
     struct Visit { int point; int depth; };
     std::deque<Visit> pending;
     int next = 0;
-    for (int seed : seedOrder) {
+    const size_t reportEvery = std::max<size_t>(1, seedOrder.size() / 50);
+    for (size_t s = 0; s < seedOrder.size(); ++s) {
+        if (progress && s % reportEvery == 0 && !progress(double(s) / seedOrder.size())) return false;
+        const int seed = seedOrder[s];
         if (clusters.label[seed] != unlabelled) continue;
         const int id = next++;
         clusters.label[seed] = id;
@@ -72,6 +79,7 @@ inline void PropagateIndices(const std::vector<vcg::Point3f> &normals, const std
         }
     }
     clusters.clusterCount = next;
+    return true;
 }
 
 } // namespace gaussphere

@@ -16,6 +16,8 @@
 #define VCG_EXT_GAUSSPHERE_POINT_GRID_H
 
 #include <algorithm>
+#include <atomic>
+#include <functional>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -24,6 +26,8 @@
 #include <memory>
 #include <utility>
 #include <vector>
+
+#include <omp.h>
 
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
@@ -59,27 +63,33 @@ public:
         : points_(points)
     {
         const int n = int(points.size());
-        order_.resize(n);
         if (n == 0) return;
-        for (const Point3 &p : points) box_.Add(p);
-        cellSize_ = ChooseCellSize(pointsPerCell);
-
-        std::vector<std::pair<std::uint64_t, int>> keyed(n);
+        box_ = RobustBox(points);
+        std::vector<std::pair<std::uint64_t, int>> keyed;
+        keyed.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            if (box_.IsIn(points[i])) keyed.push_back({0, i});
+            else far_.push_back(i);
+        }
+        const int inside = int(keyed.size());
+        cellSize_ = ChooseCellSize(pointsPerCell, keyed);
 #pragma omp parallel for schedule(static)
-        for (int i = 0; i < n; ++i) keyed[i] = {MortonKey(CellOf(points[i])), i};
+        for (int s = 0; s < inside; ++s) keyed[s].first = MortonKey(CellOf(points[keyed[s].second]));
         std::sort(keyed.begin(), keyed.end());
-        for (int i = 0; i < n; ++i) order_[i] = keyed[i].second;
-        sortedX_.resize(n);
-        sortedY_.resize(n);
-        sortedZ_.resize(n);
-        for (int s = 0; s < n; ++s) {
+        order_.resize(n);
+        for (int s = 0; s < inside; ++s) order_[s] = keyed[s].second;
+        std::copy(far_.begin(), far_.end(), order_.begin() + inside); // outliers last, in no cell
+        sortedX_.resize(inside);
+        sortedY_.resize(inside);
+        sortedZ_.resize(inside);
+        for (int s = 0; s < inside; ++s) {
             sortedX_[s] = points[order_[s]][0];
             sortedY_[s] = points[order_[s]][1];
             sortedZ_[s] = points[order_[s]][2];
         }
-        for (int s = 0; s < n; ++s)
+        for (int s = 0; s < inside; ++s)
             if (s == 0 || keyed[s].first != keyed[s - 1].first) cellStart_.push_back(s);
-        cellStart_.push_back(n);
+        cellStart_.push_back(inside);
         cellKey_.reserve(cellStart_.size() - 1);
         for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellKey_.push_back(keyed[cellStart_[c]].first);
         BuildCellTable();
@@ -95,12 +105,17 @@ public:
     /// found = min(k, N-1) nearest other points by increasing (distance, index): ties are
     /// resolved by index, as in PointKdTree, so the result is unique. Runs in parallel; sink
     /// must be safe to call concurrently for different i.
+    /// `progress(fraction)` is called from the calling thread now and then; when it returns
+    /// false the search stops early and ForAllKNearest returns false (some points unvisited).
     template <class Sink>
-    void ForAllKNearest(int k, Sink sink) const
+    bool ForAllKNearest(int k, Sink sink, const std::function<bool(double)> &progress = nullptr) const
     {
         const int n = int(points_.size());
         k = std::max(0, std::min(k, n - 1));
         std::vector<int> unresolved;
+        std::atomic<int> cellsDone(0);
+        std::atomic<bool> cancelled(false);
+        const int reportEvery = std::max(1, CellCount() / 100);
 #pragma omp parallel
         {
             std::vector<int> idx(k + 1);
@@ -110,6 +125,12 @@ public:
             std::vector<int> localUnresolved;
 #pragma omp for schedule(dynamic, 64)
             for (int c = 0; c < CellCount(); ++c) {
+                if (cancelled.load(std::memory_order_relaxed)) continue;
+                const int done = ++cellsDone;
+                // Only the calling thread (OpenMP's master) talks to the caller's callback.
+                if (progress && omp_get_thread_num() == 0 && done % reportEvery == 0 &&
+                    !progress(double(done) / CellCount()))
+                    cancelled = true;
                 const Cell home = DecodeCell(cellKey_[c]);
                 for (int ring = 1; ring <= kMaxRing; ++ring) shell[ring].clear();
                 CollectShell(home, 1, shell[1]);
@@ -121,10 +142,10 @@ public:
                     for (;; ++ring) {
                         if (ring > gathered) CollectShell(home, ring, shell[gathered = ring]);
                         ScanShell(shell[ring], i, k, nearest.data(), found);
-                        const bool complete = k == 0 || (found == k && DistanceOfKey(nearest[k - 1]) < Squared(BlockMargin(i, home, ring)));
+                        const bool complete = k == 0 || (found == k && DistanceOfKey(nearest[k - 1]) < Squared(Margin(i, home, ring)));
                         if (complete || ring == kMaxRing) break;
                     }
-                    if (k > 0 && (found < k || DistanceOfKey(nearest[k - 1]) >= Squared(BlockMargin(i, home, ring)))) {
+                    if (k > 0 && (found < k || DistanceOfKey(nearest[k - 1]) >= Squared(Margin(i, home, ring)))) {
                         localUnresolved.push_back(i); // an isolated point: the kd-tree answers it
                         continue;
                     }
@@ -138,7 +159,9 @@ public:
 #pragma omp critical
             unresolved.insert(unresolved.end(), localUnresolved.begin(), localUnresolved.end());
         }
-        if (unresolved.empty()) return;
+        if (cancelled) return false;
+        unresolved.insert(unresolved.end(), far_.begin(), far_.end());
+        if (unresolved.empty()) return true;
         std::sort(unresolved.begin(), unresolved.end());
         const PointKdTree tree(points_);
 #pragma omp parallel
@@ -152,6 +175,7 @@ public:
                 sink(i, idx.data(), d2.data(), found);
             }
         }
+        return true;
     }
 
 private:
@@ -164,24 +188,48 @@ private:
 
     static float Squared(double v) { return float(v * v); }
 
-    double ChooseCellSize(double pointsPerCell) const
+    /// Grid box: the 0.1 % to 99.9 % quantiles of each coordinate, grown by half their
+    /// extent on each side. Points outside (stray scanner returns far from the model) stay
+    /// out of the grid, so that they cannot stretch its cells; the kd-tree answers them.
+    static vcg::Box3f RobustBox(const std::vector<Point3> &points)
+    {
+        const size_t n = points.size();
+        vcg::Box3f box;
+        std::vector<float> coordinate(n);
+        for (int a = 0; a < 3; ++a) {
+            for (size_t i = 0; i < n; ++i) coordinate[i] = points[i][a];
+            const size_t low = n / 1000, high = n - 1 - n / 1000;
+            std::nth_element(coordinate.begin(), coordinate.begin() + low, coordinate.end());
+            const float lo = coordinate[low];
+            std::nth_element(coordinate.begin(), coordinate.begin() + high, coordinate.end());
+            const float hi = coordinate[high];
+            box.min[a] = lo - 0.5f * (hi - lo);
+            box.max[a] = hi + 0.5f * (hi - lo);
+        }
+        return box;
+    }
+
+    /// `inside`: the points in the grid box (second members).
+    double ChooseCellSize(double pointsPerCell, const std::vector<std::pair<std::uint64_t, int>> &inside) const
     {
         const double extent = std::max({double(box_.DimX()), double(box_.DimY()), double(box_.DimZ())});
         if (!(extent > 0)) return 1.0;
-        const int n = int(points_.size());
+        const int n = int(inside.size());
         // Coarse occupancy grid: about sqrt(N)/4 cells per axis, a bitmap of at most 512^3.
         const int resolution = std::max(8, std::min(512, int(std::sqrt(double(n)) / 4)));
         const double coarse = extent / resolution * (1 + 1e-6);
         std::vector<std::uint64_t> bits((size_t(resolution) * resolution * resolution + 63) / 64, 0);
-        for (const Point3 &p : points_) {
-            const size_t x = size_t((p[0] - box_.min[0]) / coarse), y = size_t((p[1] - box_.min[1]) / coarse),
-                         z = size_t((p[2] - box_.min[2]) / coarse);
+        for (const auto &entry : inside) {
+            const Point3 &p = points_[entry.second];
+            const size_t x = std::min(size_t(resolution - 1), size_t((p[0] - box_.min[0]) / coarse)),
+                         y = std::min(size_t(resolution - 1), size_t((p[1] - box_.min[1]) / coarse)),
+                         z = std::min(size_t(resolution - 1), size_t((p[2] - box_.min[2]) / coarse));
             const size_t bit = (x * resolution + y) * resolution + z;
             bits[bit / 64] |= std::uint64_t(1) << (bit % 64);
         }
         size_t occupied = 0;
         for (std::uint64_t w : bits) occupied += size_t(__builtin_popcountll(w));
-        const double size = coarse * std::sqrt(pointsPerCell * double(occupied) / n);
+        const double size = coarse * std::sqrt(pointsPerCell * double(occupied) / std::max(1, n));
         // Keep the cell count per axis within the 21 bits of the Morton key.
         return std::max(size, extent / double(1 << 20));
     }
@@ -308,6 +356,17 @@ private:
         }
     }
 
+    /// How far the search around point i is known to be complete: the boundary of the
+    /// block within `ring` of home, and of the grid box when points lie outside it.
+    double Margin(int i, const Cell &home, int ring) const
+    {
+        double margin = BlockMargin(i, home, ring);
+        if (!far_.empty())
+            for (int a = 0; a < 3; ++a)
+                margin = std::min({margin, double(points_[i][a] - box_.min[a]), double(box_.max[a] - points_[i][a])});
+        return std::max(0.0, margin);
+    }
+
     /// Distance from point i to the boundary of the block of cells within `ring` of home.
     double BlockMargin(int i, const Cell &home, int ring) const
     {
@@ -326,6 +385,7 @@ private:
     vcg::Box3f box_;
     double cellSize_ = 1.0;
     std::vector<int> order_;
+    std::vector<int> far_;          // points outside the grid box
     std::vector<int> cellStart_;
     std::vector<std::uint64_t> cellKey_;
     std::vector<int> table_;

@@ -26,7 +26,7 @@
 //   otherwise become a few huge surfels whose blend bleeds over the creases (anchor:
 //   Delta*max 0.086 -> 0.045 for 3.5 % more surfels; fandisk 0.059 -> 0.038 for 10 %);
 //   scanned models hardly change (bunny +0.5 %);
-// together: dragon 23.5 % (103,040 surfels), L2,1 RMS 0.0405, max 0.155.
+// together: dragon 23.6 % (103,211 surfels), L2,1 RMS 0.0405, max 0.150.
 // Normalization stops when a round changes the count by less than convergenceFraction x N
 // (1 %, the paper's rule); on small inputs this may leave a few elongated clusters, and
 // convergenceFraction = 0 runs every round up to maxIterations.
@@ -143,6 +143,15 @@ private:
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+/// values[i] = old values[order[i]].
+template <class T>
+void Permute(const std::vector<int> &order, std::vector<T> &values)
+{
+    std::vector<T> permuted(values.size());
+    for (size_t i = 0; i < order.size(); ++i) permuted[i] = values[order[i]];
+    values.swap(permuted);
+}
+
 inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 {
     if (cb && !cb(percent, what)) throw ResamplingCancelled();
@@ -198,11 +207,23 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
+    {
+        // Renumber the points along the grid's Morton order: points close in space become
+        // close in memory, which makes every later pass cache-friendly (1.5-1.8x faster on
+        // randomly ordered input) and the grid's own order the identity.
+        const std::vector<int> spatial = PointGrid(points).Order();
+        detail::Permute(spatial, points);
+        detail::Permute(spatial, normals);
+        detail::Permute(spatial, source);
+    }
     const PointGrid grid(points);
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = param.neighborCount;
     neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
-    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, grid);
+    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, grid, [cb](double done) {
+        return cb == nullptr || cb(2 + int(40 * done), "Gaussian sphere resampling: neighbour search");
+    });
+    if (graph.Size() != n) throw ResamplingCancelled();
     stats.secondsNeighbors = timer.Lap();
 
     // 2-3. Naive sampling and optimized sampling at one level.
@@ -236,7 +257,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         propagation.inscribedRadius = inscribedRadius;
         propagation.reference = param.reference;
         propagation.order = param.order;
-        PropagateIndices(normals, triangle, graph, grid.Order(), propagation, c);
+        const bool labelled = PropagateIndices(normals, triangle, graph, grid.Order(), propagation, c, [cb](double done) {
+            return cb == nullptr || cb(45 + int(10 * done), "Gaussian sphere resampling: index propagation");
+        });
+        if (!labelled) throw ResamplingCancelled();
         RejoinSingletons(normals, graph, inscribedRadius, c);
         c.Compact();
         r.naiveCount = c.clusterCount;
