@@ -1,5 +1,7 @@
 #include "point_generator.h"
 
+#include <vcg_ext/gaussphere/point_grid.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -139,19 +141,10 @@ void SortMorton(OrientedPointMesh &mesh)
     vcg::Box3f box;
     for (const auto &v : mesh.vert) box.Add(v.cP());
     const double scale = double((1 << 21) - 1) / std::max(1e-30, double(std::max({box.DimX(), box.DimY(), box.DimZ()})));
-    auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
-        v &= 0x1fffff;
-        v = (v | v << 32) & 0x1f00000000ffffull;
-        v = (v | v << 16) & 0x1f0000ff0000ffull;
-        v = (v | v << 8) & 0x100f00f00f00f00full;
-        v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-        v = (v | v << 2) & 0x1249249249249249ull;
-        return v;
-    };
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(mesh.vert.size());
     for (size_t i = 0; i < keyed.size(); ++i) {
         std::uint64_t key = 0;
-        for (int a = 0; a < 3; ++a) key |= spread(std::uint64_t((mesh.vert[i].cP()[a] - box.min[a]) * scale)) << a;
+        for (int a = 0; a < 3; ++a) key |= vcg::gaussphere::MortonSpread(std::uint64_t((mesh.vert[i].cP()[a] - box.min[a]) * scale)) << a;
         keyed[i] = {key, std::uint32_t(i)};
     }
     std::sort(keyed.begin(), keyed.end());

@@ -37,6 +37,19 @@
 namespace vcg {
 namespace gaussphere {
 
+/// The low 21 bits of v moved to every third bit: interleaving three of these gives a
+/// 63-bit Morton (Z-order) code.
+inline std::uint64_t MortonSpread(std::uint64_t v)
+{
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
 /// (squared distance, index) packed so that integer order is lexicographic order: the
 /// bit pattern of a non-negative float grows with its value.
 inline std::uint64_t DistanceIndexKey(float squaredDistance, int id)
@@ -240,16 +253,6 @@ private:
                     std::int64_t((p[2] - box_.min[2]) / cellSize_)};
     }
 
-    static std::uint64_t Spread(std::uint64_t v)
-    {
-        v &= 0x1fffff;
-        v = (v | v << 32) & 0x1f00000000ffffull;
-        v = (v | v << 16) & 0x1f0000ff0000ffull;
-        v = (v | v << 8) & 0x100f00f00f00f00full;
-        v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-        v = (v | v << 2) & 0x1249249249249249ull;
-        return v;
-    }
     static std::uint64_t Compact(std::uint64_t v)
     {
         v &= 0x1249249249249249ull;
@@ -262,7 +265,7 @@ private:
     }
     static std::uint64_t MortonKey(const Cell &c)
     {
-        return Spread(std::uint64_t(c.x)) | Spread(std::uint64_t(c.y)) << 1 | Spread(std::uint64_t(c.z)) << 2;
+        return MortonSpread(std::uint64_t(c.x)) | MortonSpread(std::uint64_t(c.y)) << 1 | MortonSpread(std::uint64_t(c.z)) << 2;
     }
     static Cell DecodeCell(std::uint64_t key)
     {
