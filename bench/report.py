@@ -582,7 +582,11 @@ def write_control_error_bound(rows, out_dir, header):
     wins_table, lost = control_wins(compared, "bound", "ε", metrics)
     models = models_in_order(rows)
     bounds = list(group_rows(rows, "bound"))
-    pct = lambda v: "–" if math.isnan(v) else f"{100 * v:.2f} %"
+    def pct(v):
+        """A fraction as a percentage; small non-zero ones with two significant digits."""
+        if math.isnan(v):
+            return "–"
+        return "0 %" if v == 0 else f"{100 * v:.2g} %" if 100 * v < 0.1 else f"{100 * v:.2f} %"
 
     check_headings = ["model", "ε", "ours points (% input)", "splits for ε", "own-plane max / ε",
                       "Δ*max", "Δ*max / ε", "Δ*p99.9 / ε", "points Δ* > ε: ours", "CGAL hierarchy",
