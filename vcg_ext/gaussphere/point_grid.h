@@ -109,6 +109,16 @@ public:
         BuildShellOffsets();
     }
 
+    /// To be called after the caller has permuted the point vector the grid was built on
+    /// (the same object) into Order(): point order[s] is now point s, so the grid's order
+    /// becomes the identity and nothing needs sorting again.
+    void PointsRenumberedToOrder()
+    {
+        const int inside = int(order_.size() - far_.size());
+        for (int s = 0; s < int(order_.size()); ++s) order_[s] = s;
+        for (size_t f = 0; f < far_.size(); ++f) far_[f] = inside + int(f);
+    }
+
     /// Point indices sorted by the Morton code of their cell: a spatially coherent order.
     const std::vector<int> &Order() const { return order_; }
     double CellSize() const { return cellSize_; }
