@@ -205,13 +205,11 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
 
     const gs::ResamplingStats &s = result.stats;
     Log("Gaussian sphere resampling: %d points -> %d surfels (%.2f%%), level %d, %d iteration(s), "
-        "%.1f adaptive neighbours per point",
+        "%.1f adaptive neighbours per point, L2,1 RMS %.4f; time %.3f s (neighbours %.3f, propagation %.3f, "
+        "normalization %.3f, refinement %.3f, surfels %.3f)",
         s.inputCount - s.skippedCount, s.outputCount, 100.0 * s.outputCount / std::max(1, s.inputCount - s.skippedCount),
-        s.levelUsed, s.iterations, s.meanAdaptiveNeighbors);
-    Log("Gaussian sphere resampling time: %.3f s (neighbours %.3f, propagation %.3f, normalization %.3f, "
-        "refinement %.3f, surfels %.3f)",
-        s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation, s.secondsNormalization, s.secondsRefinement,
-        s.secondsSurfels);
+        s.levelUsed, s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.TotalSeconds(), s.secondsNeighbors,
+        s.secondsPropagation, s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
         Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
             "for the target count, %d split(s) for the error bound",
