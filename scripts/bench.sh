@@ -19,26 +19,9 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-bench}"
 jobs="${JOBS:-2}"
 
-quick=0
-models=()
-for arg in "$@"; do
-  case "$arg" in
-    --quick) quick=1 ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
-    -*) echo "bench.sh: unknown option $arg" >&2; exit 2 ;;
-    *) models+=("$arg") ;;
-  esac
-done
-
-# meshlabserver needs an X display: re-run this script inside one virtual display, after the
-# build (so that a build error is not hidden behind xvfb-run).
-if [ -z "${GSBENCH_IN_XVFB:-}" ]; then
-  if [ ! -f "$build/CMakeCache.txt" ]; then
-    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSSPHERE_BUILD_BENCH=ON
-  fi
-  cmake --build "$build" --target gsbench stage -j "$jobs"
-  GSBENCH_IN_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$@"
-fi
+source "$root/scripts/bench_common.sh"
+bench_parse_args bench.sh 19 "$@"
+bench_build_then_run_in_xvfb -DGAUSSPHERE_BUILD_BENCH=ON -- "$@"
 
 gsbench="$build/bench/gsbench"
 meshlabserver="$build/stage/bin/meshlabserver"
@@ -53,15 +36,7 @@ else
   data="$root/../shared/data"
   out="$root/bench/results"
   runs="${RUNS:-3}"
-  if [ ${#models[@]} -eq 0 ]; then
-    # The paper's models first, then the rest in alphabetical order.
-    models=(dragon igea bunny horse armadillo_43k maxplanck_25k buddha_res3 dragon_res2 fandisk rocker_arm)
-    for f in "$data"/*.ply; do
-      name="$(basename "$f" .ply)"
-      case "$name" in *_mesh) continue ;; esac
-      [[ " ${models[*]} " == *" $name "* ]] || models+=("$name")
-    done
-  fi
+  [ ${#models[@]} -gt 0 ] || bench_all_models "$data"
   figure7_models=(bunny dragon igea)
   figure7_levels=(12 16 20 24)
 fi

@@ -27,25 +27,9 @@ targets="${TARGETS:-5 10 20 30}"
 poisson_targets="${POISSON_TARGETS:-$targets}"
 errors="${ERRORS:-0.002 0.001}"
 
-quick=0
-models=()
-for arg in "$@"; do
-  case "$arg" in
-    --quick) quick=1 ;;
-    -h|--help) sed -n '2,23p' "$0"; exit 0 ;;
-    -*) echo "bench_control.sh: unknown option $arg" >&2; exit 2 ;;
-    *) models+=("$arg") ;;
-  esac
-done
-
-# meshlabserver needs an X display: build first (errors stay visible), then re-run in xvfb.
-if [ -z "${GSBENCH_IN_XVFB:-}" ]; then
-  if [ ! -f "$build/CMakeCache.txt" ]; then
-    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSSPHERE_BUILD_TESTS=OFF
-  fi
-  cmake --build "$build" --target gsbench stage -j "$jobs"
-  GSBENCH_IN_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$@"
-fi
+source "$root/scripts/bench_common.sh"
+bench_parse_args bench_control.sh 23 "$@"
+bench_build_then_run_in_xvfb -DGAUSSPHERE_BUILD_TESTS=OFF -- "$@"
 
 gsbench="$build/bench/gsbench"
 meshlabserver="$build/stage/bin/meshlabserver"
@@ -58,15 +42,7 @@ else
   data="$root/../shared/data"
   out="$root/bench/results"
   runs="${RUNS:-3}"
-  if [ ${#models[@]} -eq 0 ]; then
-    # The paper's models first, then the rest in alphabetical order (as scripts/bench.sh).
-    models=(dragon igea bunny horse armadillo_43k maxplanck_25k buddha_res3 dragon_res2 fandisk rocker_arm)
-    for f in "$data"/*.ply; do
-      name="$(basename "$f" .ply)"
-      case "$name" in *_mesh) continue ;; esac
-      [[ " ${models[*]} " == *" $name "* ]] || models+=("$name")
-    done
-  fi
+  [ ${#models[@]} -gt 0 ] || bench_all_models "$data"
 fi
 
 raw="$out/raw"
