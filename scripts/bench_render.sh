@@ -47,12 +47,8 @@ if [ -z "${BENCH_RENDER_UNDER_XVFB:-}" ]; then
     $([ "$variations" = 1 ] || echo --no-variations)
 fi
 
-# The Debian numpy/matplotlib live in the system python; a pyenv python3 earlier in PATH lacks them.
-py=""
-for candidate in ${PYTHON:-} python3 /usr/bin/python3; do
-  if "$candidate" -c 'import numpy, matplotlib' 2>/dev/null; then py="$candidate"; break; fi
-done
-[ -n "$py" ] || { echo "bench_render.sh: no python3 with numpy and matplotlib (Debian: python3-numpy python3-matplotlib)" >&2; exit 1; }
+source "$here/bench/render/find_python.sh"
+find_numpy_python bench_render.sh
 tool="$here/bench/render/render_bench.py"
 server="$build/stage/bin/meshlabserver"
 render="$build/tools/splat_render/splat_render"

@@ -15,11 +15,8 @@ data="${DATA_DIR:-$here/../shared/data}"
 if [ -z "${BENCH_RENDER_UNDER_XVFB:-}" ]; then
   BENCH_RENDER_UNDER_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "${BASH_SOURCE[0]}" "$@"
 fi
-py=""
-for candidate in ${PYTHON:-} python3 /usr/bin/python3; do
-  if "$candidate" -c 'import numpy, matplotlib' 2>/dev/null; then py="$candidate"; break; fi
-done
-[ -n "$py" ] || { echo "make_images.sh: no python3 with numpy and matplotlib" >&2; exit 1; }
+source "$here/bench/render/find_python.sh"
+find_numpy_python make_images.sh
 tool="$here/bench/render/render_bench.py"
 server="$build/stage/bin/meshlabserver"
 render="$build/tools/splat_render/splat_render"
@@ -28,7 +25,7 @@ src="$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/
 mlx_dir="$here/sample_data"
 [ -n "$src" ] && [ -f "$src/sample_data/resample_level8.mlx" ] && mlx_dir="$src/sample_data"
 images="$here/docs/images"
-work="$here/bench/render/work/images"
+work="$here/bench/render/scratch/images"
 mkdir -p "$images" "$work"
 px=640
 
