@@ -17,6 +17,7 @@
 
 #include <vcg/space/point3.h>
 
+#include "flat_vector.h"
 #include "point_grid.h"
 
 namespace vcg {
@@ -25,13 +26,14 @@ namespace gaussphere {
 struct NeighborGraph
 {
     int stride = 0;                 ///< k: slots per point
-    std::vector<int> adjacency;     ///< N(i) = adjacency[i*stride, i*stride + count[i])
-    std::vector<std::uint8_t> count; ///< neighbours inside the cone (all found, before RestrictToCone)
+    FlatVector<int> adjacency;      ///< N(i) = adjacency[i*stride, i*stride + count[i])
+    std::vector<std::uint8_t> count; ///< neighbours inside the cone of `chord`
     std::vector<std::uint8_t> found; ///< neighbours found (min(k, N-1)), kept ones first
     /// Mean distance to the (up to) 6 nearest neighbours at a non-zero distance; for a
     /// point whose k neighbours all coincide with it, the median spacing of the others
     /// (or 1e-3 when every point coincides: there is no scale to read).
     std::vector<float> spacing;
+    double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet)
 
     int Size() const { return int(count.size()); }
     const int *begin(int i) const { return adjacency.data() + size_t(i) * stride; }
@@ -66,6 +68,8 @@ inline void FillUnknownSpacing(std::vector<float> &spacing)
 inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
                            double chord, NeighborGraph &g)
 {
+    if (chord == g.chord) return;
+    g.chord = chord;
     const float minDot = float(1.0 - 0.5 * chord * chord);
     const int n = g.Size();
 #pragma omp parallel
@@ -109,22 +113,33 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     const int n = int(points.size());
     NeighborGraph g;
     g.stride = std::max(1, std::min({param.k, 255, std::max(1, n - 1)}));
-    g.adjacency.assign(size_t(n) * g.stride, -1);
-    g.found.assign(n, 0);
-    g.spacing.assign(n, 0.f);
+    g.adjacency.resize(size_t(n) * g.stride);
+    g.count.resize(n);
+    g.found.resize(n);
+    g.spacing.resize(n);
+    g.chord = param.coneChord;
+    const float minDot = float(1.0 - 0.5 * param.coneChord * param.coneChord);
     const bool complete = grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
         int near = 0;
         float sum = 0;
         for (int t = 0; t < found && near < 6; ++t)
             if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
         g.spacing[i] = near > 0 ? sum / near : 0.f;
-        std::copy(idx, idx + found, g.adjacency.begin() + size_t(i) * g.stride);
+        // Partition as RestrictToCone does: kept neighbours first, each run by distance.
+        int *slot = g.adjacency.data() + size_t(i) * g.stride;
+        int kept = 0, dropped = 0;
+        int rejected[255];
+        for (int t = 0; t < found; ++t) {
+            if (normals[i].dot(normals[idx[t]]) >= minDot) slot[kept++] = idx[t];
+            else rejected[dropped++] = idx[t];
+        }
+        std::copy(rejected, rejected + dropped, slot + kept);
+        std::fill(slot + found, slot + g.stride, -1);
         g.found[i] = std::uint8_t(found);
+        g.count[i] = std::uint8_t(kept);
     }, progress);
     if (!complete) return NeighborGraph();
-    g.count = g.found; // one run in (distance, index) order: everything counts as kept so far
-    FillUnknownSpacing(g.spacing);
-    RestrictToCone(points, normals, param.coneChord, g);
+    if (std::find(g.spacing.begin(), g.spacing.end(), 0.f) != g.spacing.end()) FillUnknownSpacing(g.spacing);
     return g;
 }
 

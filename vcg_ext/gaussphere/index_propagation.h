@@ -15,7 +15,6 @@
 #define VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 
 #include <cmath>
-#include <deque>
 #include <functional>
 #include <vector>
 
@@ -53,7 +52,10 @@ inline bool PropagateIndices(const std::vector<vcg::Point3f> &normals, const std
     for (int &l : clusters.label) l = (l == -1) ? -1 : unlabelled;
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
     struct Visit { int point; int depth; };
-    std::deque<Visit> pending;
+    // One vector serves both orders: a stack popped at the back, or a queue read from
+    // `head` (cleared when a seed's cluster is complete).
+    std::vector<Visit> pending;
+    size_t head = 0;
     int next = 0;
     const size_t reportEvery = std::max<size_t>(1, seedOrder.size() / 50);
     for (size_t s = 0; s < seedOrder.size(); ++s) {
@@ -62,11 +64,13 @@ inline bool PropagateIndices(const std::vector<vcg::Point3f> &normals, const std
         if (clusters.label[seed] != unlabelled) continue;
         const int id = next++;
         clusters.label[seed] = id;
+        pending.clear();
+        head = 0;
         pending.push_back({seed, 0});
-        while (!pending.empty()) {
+        while (head < pending.size()) {
             Visit v;
             if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
-            else { v = pending.front(); pending.pop_front(); }
+            else v = pending[head++];
             if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
             const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
             for (const int *q = graph.begin(v.point); q != graph.end(v.point); ++q) {
