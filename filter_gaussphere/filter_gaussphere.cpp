@@ -81,6 +81,14 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichInt("MaxClusterSize", defaults.maxClusterSize, "Maximum cluster size",
         "Clusters with more points are split whatever their shape (0 = no limit), so that flat regions "
         "are covered by surfels of bounded size rather than a few huge ones."));
+    par.addParam(RichFloat("CreaseAngle", defaults.creaseAngle, "Crease angle (degrees)",
+        "A point lies on a crease when one of its nearest neighbours has a normal turned by more than "
+        "this angle (and less than 120 degrees, beyond which it is the other side of a thin part). "
+        "Clusters touching a crease are kept small, so that surfels do not round sharp edges off "
+        "(0 = off, below 120)."));
+    par.addParam(RichInt("CreaseClusterSize", defaults.creaseClusterSize, "Maximum cluster size at creases",
+        "Clusters touching a crease are split above this many points (0 = no limit); from 4 points on "
+        "they are also split when elongated along the edge."));
     par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
         "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
         "surfel normal, r being the distance to the cluster centroid. 0 means 1% of the bounding box "
@@ -143,6 +151,8 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     param.normalizationThreshold = par.getFloat("NormalizationThreshold");
     param.minSplitSize = par.getInt("MinSplitSize");
     param.maxClusterSize = par.getInt("MaxClusterSize");
+    param.creaseAngle = par.getFloat("CreaseAngle");
+    param.creaseClusterSize = par.getInt("CreaseClusterSize");
     const float width = par.getAbsPerc("WeightWidth");
     param.weightWidth = width > 0 ? width : -1.0;
     param.maxIterations = par.getInt("MaxIterations");

@@ -49,27 +49,64 @@ TEST_F(CubePipeline, NoClusterStraddlesAnEdge)
     }
 }
 
-// Flat faces of 529 points each give few, large surfels.
-TEST_F(CubePipeline, FlatFacesGiveFewLargeSurfels)
+// Flat faces of 529 points each give few surfels: large ones inside, and small ones along
+// the edges, where the crease limits apply (the edge points' normals are 45 degrees away,
+// the next face's 90).
+TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
 {
     const auto members = gstest::MembersOf(Result());
+    const ResamplingParams defaults;
+    const float spacing = 2.f / 24;
+    // Distance from a face point to its face's boundary: the cube spans [-1, 1].
+    auto toBoundary = [&](int i) {
+        const P3 &p = Cube().points[i], &n = Cube().normals[i];
+        float d = 2;
+        for (int a = 0; a < 3; ++a)
+            if (n[a] == 0) d = std::min(d, 1.f - std::abs(p[a]));
+        return d;
+    };
     std::vector<int> perFace(6, 0);
-    int facePoints = 0;
+    int facePoints = 0, interiorClusters = 0, interiorPoints = 0;
     for (size_t c = 0; c < members.size(); ++c) {
         const int tag = Cube().tag[members[c][0]];
-        if (tag < 6) {
-            ++perFace[tag];
-            facePoints += int(members[c].size());
+        if (tag >= 6) continue;
+        ++perFace[tag];
+        facePoints += int(members[c].size());
+        float nearest = 2;
+        for (int i : members[c]) nearest = std::min(nearest, toBoundary(i));
+        if (nearest < 1.5f * spacing)
+            EXPECT_LE(int(members[c].size()), defaults.creaseClusterSize) << "cluster " << c << " touches an edge";
+        if (nearest > 3.5f * spacing) {
+            ++interiorClusters;
+            interiorPoints += int(members[c].size());
         }
     }
     EXPECT_EQ(facePoints, 6 * 23 * 23);
     for (int f = 0; f < 6; ++f) {
         EXPECT_GE(perFace[f], 1);
-        EXPECT_LE(perFace[f], 40) << "face " << f << ": " << 23 * 23 << " coplanar points";
+        EXPECT_LE(perFace[f], 100) << "face " << f << ": " << 23 * 23 << " coplanar points";
     }
-    EXPECT_LT(Result().surfels.size(), Cube().Size() / 5);
-    std::printf("cube: %d points -> %zu surfels (per face: %d %d %d %d %d %d)\n", Cube().Size(),
-                Result().surfels.size(), perFace[0], perFace[1], perFace[2], perFace[3], perFace[4], perFace[5]);
+    ASSERT_GT(interiorClusters, 0);
+    EXPECT_GE(double(interiorPoints) / interiorClusters, 1.5 * defaults.creaseClusterSize)
+        << "inside the faces, surfels stay larger than the crease limit";
+    EXPECT_LT(Result().surfels.size(), Cube().Size() / 4);
+    std::printf("cube: %d points -> %zu surfels (per face: %d %d %d %d %d %d), %.1f points per interior surfel\n",
+                Cube().Size(), Result().surfels.size(), perFace[0], perFace[1], perFace[2], perFace[3], perFace[4],
+                perFace[5], double(interiorPoints) / interiorClusters);
+}
+
+// With the crease limits off, a face is a few surfels of up to MaxClusterSize points.
+TEST(ResamplingPipeline, CubeWithoutCreaseLimitsKeepsFewSurfelsPerFace)
+{
+    const gstest::PointSet s = gstest::CubeSurface(24, true);
+    ResamplingParams p;
+    p.creaseAngle = 0;
+    const ResamplingResult r = gstest::Resample(s, p);
+    const auto members = gstest::MembersOf(r);
+    std::vector<int> perFace(6, 0);
+    for (const auto &m : members)
+        if (s.tag[m[0]] < 6) ++perFace[s.tag[m[0]]];
+    for (int f = 0; f < 6; ++f) EXPECT_LE(perFace[f], 40) << "face " << f;
 }
 
 // Without the edge points the faces are separate components of the neighbour graph.

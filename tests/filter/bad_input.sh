@@ -29,6 +29,8 @@ expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NeighborCount=0)" "Neighbo
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NormalizationThreshold=0.5)" "NormalizationThreshold"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with PropagationDepth=-3)" "PropagationDepth"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxClusterSize=-1)" "MaxClusterSize"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseAngle"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseClusterSize=-2)" "CreaseClusterSize"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply

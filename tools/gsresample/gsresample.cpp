@@ -1,7 +1,8 @@
 // gsresample: the Gaussian sphere resampler as a command-line program, without MeshLab.
 //
 //   gsresample INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]
-//              [--min-split S] [--iterations I] [--base octahedron|icosahedron]
+//              [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]
+//              [--crease-min-split S] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
 //              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL]
 //
@@ -25,7 +26,8 @@ int main(int argc, char **argv)
 {
     if (argc < 3) {
         std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]"
-                             " [--min-split S] [--iterations I] [--base octahedron|icosahedron]"
+                             " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S]"
+                             " [--iterations I] [--base octahedron|icosahedron]"
                              " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION]\n", argv[0]);
         return 2;
     }
@@ -38,6 +40,9 @@ int main(int argc, char **argv)
         else if (key == "--threshold") param.normalizationThreshold = std::stod(value);
         else if (key == "--min-split") param.minSplitSize = std::stoi(value);
         else if (key == "--max-cluster") param.maxClusterSize = std::stoi(value);
+        else if (key == "--crease-angle") param.creaseAngle = std::stod(value);
+        else if (key == "--crease-cluster") param.creaseClusterSize = std::stoi(value);
+        else if (key == "--crease-min-split") param.creaseMinSplitSize = std::stoi(value);
         else if (key == "--iterations") param.maxIterations = std::stoi(value);
         else if (key == "--weight-width") param.weightWidth = std::stod(value);
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);

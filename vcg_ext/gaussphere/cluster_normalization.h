@@ -7,6 +7,9 @@
 // that rejoining merges back, inflating the count without improving the shape.
 // Clusters larger than `maxClusterSize` are split along their major axis whatever their
 // shape, so that flat regions keep surfels of bounded size.
+// Clusters holding a crease point (crease_points.h) get tighter limits of their own,
+// `creaseClusterSize` and `creaseMinSplitSize`: beside a crease a wide surfel rounds the
+// edge off, and an elongated one lying along the edge reaches far across it.
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
@@ -25,6 +28,10 @@ struct ClusterNormalizationParams
     double threshold = 6.0;  ///< split when lambda1 / lambda2 exceeds it (the paper's 6.0)
     int minSplitSize = 6;    ///< clusters with fewer points are never split
     int maxClusterSize = 0;  ///< clusters with more points are split whatever their shape (0 = off)
+    /// Per point: at a crease (MarkCreasePoints); null: no crease limits.
+    const std::vector<char> *creasePoints = nullptr;
+    int creaseClusterSize = 8;   ///< maxClusterSize of clusters holding a crease point (0 = off)
+    int creaseMinSplitSize = 4;  ///< minSplitSize of clusters holding a crease point
 };
 
 /// One splitting pass over all clusters. Returns the number of clusters split.
@@ -38,16 +45,22 @@ inline int SplitElongatedClusters(const std::vector<vcg::Point3f> &points, const
     std::vector<Eigen::Vector3d> centroid(count), majorAxis(count, Eigen::Vector3d::Zero());
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < count; ++c) {
-        if (members.Size(c) < std::max(2, param.minSplitSize)) continue;
+        const int size = members.Size(c);
+        bool atCrease = false;
+        if (param.creasePoints)
+            for (const int *i = members.begin(c); i != members.end(c) && !atCrease; ++i) atCrease = (*param.creasePoints)[*i];
+        const int maxSize = atCrease ? param.creaseClusterSize : param.maxClusterSize;
+        const int minSplit = atCrease ? param.creaseMinSplitSize : param.minSplitSize;
+        const bool tooLarge = maxSize > 0 && size > maxSize;
+        if (size < std::max(2, minSplit) && !tooLarge) continue;
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (const int *i = members.begin(c); i != members.end(c); ++i)
             mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);
-        mean /= members.Size(c);
+        mean /= size;
         CovarianceAccumulator cov;
         for (const int *i = members.begin(c); i != members.end(c); ++i)
             cov.Add(Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - mean);
         const PrincipalAxes pa = ComputePrincipalAxes(cov.Covariance());
-        const bool tooLarge = param.maxClusterSize > 0 && members.Size(c) > param.maxClusterSize;
         if (!(pa.value[0] > 0) || (!tooLarge && pa.value[0] <= param.threshold * pa.value[1])) continue;
         centroid[c] = mean;
         majorAxis[c] = pa.axis.col(0);
