@@ -17,6 +17,8 @@
 //       meshlab-poisson  MeshLab's Point Cloud Simplification through meshlabserver (needs
 //                        --meshlabserver and an X display)
 //       floor            S' = S, the metric's floor
+//     A CGAL peer that cannot be matched to our count is followed by a row "ours@PEER": ours
+//     at the peer's count, exact through TargetCount, measured but not timed.
 //     Times: "alg" is the median of R (default 3) in-process runs of the algorithm alone, after
 //     loading; "process" is the median wall time of R runs of `gsbench run` (load, run, save)
 //     or of meshlabserver, whose peak resident memory is reported too. --no-process skips the
@@ -498,6 +500,24 @@ int Compare(const std::string &inputPath, const Options &opt)
                 r.peakMegabytes = f.peakMegabytes;
             }
             finish(r);
+            if (!peer.match.withinTolerance && wanted("ours")) {
+                // The peer cannot reach our count (CGAL's hierarchy has no output between ~42 %
+                // and ~58 % of the input): compare at its count instead, ours exact by TargetCount.
+                OursConfig atPeer = config;
+                atPeer.targetCount = set.Count();
+                const vcg::gaussphere::ResamplingResult result = RunOurs(input, atPeer, threadCounts.front(), nullptr);
+                Row o = newRow("ours@" + peer.method);
+                o.threads = threadCounts.front();
+                o.parameters = "n=" + std::to_string(level) + " target=" + std::to_string(atPeer.targetCount);
+                o.targetPoints = atPeer.targetCount;
+                o.levelUsed = result.stats.levelUsed;
+                o.splitsForTarget = result.stats.splitsForTarget;
+                o.mergesForTarget = result.stats.mergesForTarget;
+                SimplifiedSet atPeerSet;
+                ToSimplifiedSet(result, atPeerSet);
+                measure(o, atPeerSet);
+                finish(o);
+            }
         }
     }
 
