@@ -30,7 +30,7 @@ struct ClusterNormalizationParams
     int maxClusterSize = 0;  ///< clusters with more points are split whatever their shape (0 = off)
     /// Per point: at a crease (MarkCreasePoints); null: no crease limits.
     const std::vector<char> *creasePoints = nullptr;
-    int creaseClusterSize = 8;   ///< maxClusterSize of clusters holding a crease point (0 = off)
+    int creaseClusterSize = 5;   ///< maxClusterSize of clusters holding a crease point (0 = off)
     int creaseMinSplitSize = 4;  ///< minSplitSize of clusters holding a crease point
 };
 

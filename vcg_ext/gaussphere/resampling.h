@@ -27,13 +27,15 @@
 //   Delta*max 0.086 -> 0.045 for 3.5 % more surfels; fandisk 0.059 -> 0.038 for 10 %);
 //   scanned models hardly change (bunny +0.5 %);
 // - beyond the paper, clusters that touch a crease (a neighbour's normal turned by 45 to
-//   120 degrees, crease_points.h) are split above 8 points, or when elongated from 4
+//   120 degrees, crease_points.h) are split above 5 points, or when elongated from 4
 //   points on: wide or edge-long surfels beside a crease round it off in every blend of
-//   the surfels. At equal counts this took the error at creases below CGAL's hierarchy
-//   clustering (block Delta*max 0.099 -> 0.049 against its 0.051; fandisk 0.030 -> 0.020
-//   against 0.023); the dragon gains 0.5 % surfels, which the never-split size of 8
-//   (was 7) gives back;
-// together: dragon 23.4 % (102,300 surfels), L2,1 RMS 0.0406, max 0.150.
+//   the surfels. Measured at equal counts with bench/ (level 8, 16 models), this took
+//   our Delta*max below CGAL's hierarchy clustering and MeshLab's Poisson disk sampling
+//   on the CAD parts where it was above (block 0.099 -> 0.041 against 0.051 and 0.067;
+//   anchor 0.034 -> 0.023) and lowered the blended L2,1 error everywhere. A cap of 8
+//   left block and rocker_arm above CGAL, 4 and 6 did no better than 5. The dragon gains
+//   0.5 % surfels, which the never-split size of 8 (was 7) gives back;
+// together: dragon 23.5 % (102,653 surfels), L2,1 RMS 0.0405, max 0.150.
 // Normalization stops when a round changes the count by less than convergenceFraction x N
 // (1 %, the paper's rule); on small inputs this may leave a few elongated clusters, and
 // convergenceFraction = 0 runs every round up to maxIterations.
@@ -74,7 +76,7 @@ struct ResamplingParams
     int minSplitSize = 8;            ///< clusters smaller than this are never split
     int maxClusterSize = 32;         ///< clusters with more points are split whatever their shape (0 = off)
     double creaseAngle = 45;         ///< degrees: normals turned by more mark a crease (0 = no crease limits)
-    int creaseClusterSize = 8;       ///< maxClusterSize of clusters at a crease (0 = off)
+    int creaseClusterSize = 5;       ///< maxClusterSize of clusters at a crease (0 = off)
     int creaseMinSplitSize = 4;      ///< minSplitSize of clusters at a crease
     double weightWidth = -1;         ///< h of the normal weights; < 0: 0.01 x bbox diagonal
     int maxIterations = 10;          ///< cap on normalization + rejoining rounds
