@@ -60,7 +60,7 @@ done
 src="$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/dev/null || true)"
 mlx_dir="$here/sample_data"
 [ -n "$src" ] && [ -f "$src/sample_data/resample_level8.mlx" ] && mlx_dir="$src/sample_data"
-work="$out/work"
+work="$out/scratch/runs"
 rm -rf "$work"
 mkdir -p "$work"
 : > "$work/runs.tsv"
