@@ -310,15 +310,16 @@ const LedgerRow kLedger[] = {
     {"source index (int)", "resampling.h", 4, 0, "RNCS"},
     {"grid sort keys (uint64,int): freed before the graph exists", "point_grid.h", 16, 0, "-"},
     {"grid order_ (int)", "point_grid.h", 4, 0, "NCS"},
-    {"grid sortedX/Y/Z (float)", "point_grid.h", 12, 0, "NCS"},
-    {"grid cell start/key/hash (~6 points per cell)", "point_grid.h", 4, 0, "NCS"},
+    {"grid cell start/key/hash (~8 points per cell)", "point_grid.h", 4, 0, "NCS"},
     {"graph adjacency (k ints)", "adaptive_neighbors.h", -1, 0, "NCS"},
     {"graph count, found (uint8)", "adaptive_neighbors.h", 2, 0, "NCS"},
     {"graph spacing (float)", "adaptive_neighbors.h", 4, 0, "NCS"},
     {"FillUnknownSpacing copy (float), transient", "adaptive_neighbors.h", 4, 0, "n"},
-    // Built by ForAllKNearest over all N points as soon as one point is unresolved; gone
-    // before FillUnknownSpacing runs, so it replaces that term at the stage's peak.
+    // Built by ForAllKNearest over all N points when more than 8 points are unresolved
+    // (fewer are answered by a scan); gone before FillUnknownSpacing runs, so it replaces
+    // that term at the stage's peak.
     {"kd-tree fallback: order 4 + point copy 12 + nodes 3-7", "point_grid.h, point_kdtree.h", 21, 0, "k"},
+    {"crease flag per point (char)", "crease_points.h", 1, 0, "CS"},
     {"Gaussian triangle per point (int)", "resampling.h", 4, 0, "C"},
     {"cluster label (int)", "clustering.h", 4, 0, "CS"},
     {"ClusterMembers index (int) + offsets", "clustering.h", 4, 8, "cs"},

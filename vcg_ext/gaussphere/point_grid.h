@@ -2,12 +2,18 @@
 //
 // Why: the neighbour search dominates the resampler's time, and a per-query tree walk
 // repeats the same work for neighbouring queries. Here points are sorted by the Morton
-// code of their cell; each cell gathers the points of its 3x3x3 block once, and every
-// point of the cell picks its k nearest from that shared list. The block holds the true
-// k nearest whenever the k-th distance does not exceed the distance from the point to the
-// block's boundary; otherwise the block grows to 5x5x5 and 7x7x7, and the few points still
-// unresolved (isolated outliers) are answered by a kd-tree, so the result is exact and the
-// cost stays O(N) for surface samplings, O(N log N) at worst.
+// code of their cell; each cell copies the points of its 3x3x3 block once into flat
+// arrays, and every point of the cell picks its k nearest from that shared list: all
+// distances in one vectorized loop, a branch-free compaction of the candidates inside a
+// distance bound, and a rank count (vectorized too) that sorts them. The bound is first
+// a guess from the previous point's k-th distance; if fewer than k candidates fall inside
+// it, the triangle inequality's bound and then the block's margin follow, so the guess
+// only ever costs time, never exactness. The block holds the true k nearest whenever the
+// k-th distance is below the distance from the point to the block's boundary; otherwise
+// the search grows to 5x5x5 and 7x7x7 blocks, and the few points still unresolved
+// (isolated outliers) are answered by a scan of every point (up to 8 of them) or a
+// kd-tree, so the result is exact and the cost stays O(N) for surface samplings,
+// O(N log N) at worst.
 //
 // Cell size. The grid aims at about `pointsPerCell` points per occupied cell. For a
 // surface the count of occupied cells scales with area / size^2, so counting the occupied
@@ -189,7 +195,7 @@ public:
                                 break;
                         }
                         if (found < k || DistanceOfKey(nearest[k - 1]) >= Squared(Margin(i, home, ring))) {
-                            localUnresolved.push_back(i); // an isolated point: the kd-tree answers it
+                            localUnresolved.push_back(i); // an isolated point: answered below
                             previousKth = -1;
                             continue;
                         }
