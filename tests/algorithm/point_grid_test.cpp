@@ -93,6 +93,10 @@ TEST(PointGrid, DuplicatesAndTinySetsMatchBruteForce)
     ExpectExactAllKNearest(std::vector<P3>(25, P3(1, 2, 3)), 16); // all coincide
     ExpectExactAllKNearest(SpherePoints(5, 5), 16);                // fewer than k
     ExpectExactAllKNearest(SpherePoints(1, 6), 16);                // nobody to find
+    // More coincident candidates than the ranking takes: the selection path answers.
+    std::vector<P3> crowded = SpherePoints(400, 7);
+    for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
+    ExpectExactAllKNearest(crowded, 16);
 }
 
 TEST(PointGrid, PlanarGridMatchesBruteForce)

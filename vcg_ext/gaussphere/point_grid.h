@@ -252,6 +252,7 @@ private:
     static constexpr int kMaxRing = 3;
     static constexpr size_t kMaxScannedQueries = 8;
     static constexpr float kGuessGrowth = 1.3f; // measured: 1.2-1.4 best on scans
+    static constexpr int kMaxRanked = 96;       // candidates ranked by counting; beyond, selected
 
     /// An occupied cell near the home cell: its point range and its box.
     struct NearbyCell { int begin, end; float low[3], high[3]; };
@@ -451,10 +452,11 @@ private:
             inside += int(d2[j] < bound) & int(id[j] != i);
         }
         if (inside < k) return inside;
-        // Rank by distance with a branch-free (vectorized) count; equal distances, rare
-        // outside regular grids, fall back to sorting (distance, index) keys.
-        bool tie = false;
-        for (int a = 0; a < inside; ++a) {
+        // Rank by distance with a branch-free (vectorized) count, quadratic in `inside`:
+        // only for the usual few dozen candidates. Many (coincident points) or equal
+        // distances (regular grids) fall back to selecting and sorting (distance, index) keys.
+        bool select = inside > kMaxRanked;
+        for (int a = 0; a < inside && !select; ++a) {
             const float da = near[a];
             int below = 0, equal = 0;
             for (int b = 0; b < inside; ++b) {
@@ -462,9 +464,9 @@ private:
                 equal += int(near[b] == da);
             }
             if (below < k) nearest[below] = DistanceIndexKey(da, nearId[a]);
-            tie |= equal > 1;
+            select |= equal > 1;
         }
-        if (!tie) return k;
+        if (!select) return k;
         std::uint64_t *keys = block.keys.data();
         for (int a = 0; a < inside; ++a) keys[a] = DistanceIndexKey(near[a], nearId[a]);
         if (inside > k) std::nth_element(keys, keys + (k - 1), keys + inside);
