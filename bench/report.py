@@ -136,7 +136,8 @@ def ours_row(rows, model):
 def comparable(rows, model, peer, key, ours):
     """(our row, peer row) to compare on `key`, or None. `ours` is our row at our count. When the
     peer could not be matched to our count, its errors are compared with ours at the peer's count
-    ("ours@PEER", exact through TargetCount; not timed), and its times with nothing."""
+    ("ours@PEER", exact through TargetCount; not timed; only if the counts are equal), and its
+    times with nothing."""
     p = pick(rows, model, peer)
     if ours is None or p is None:
         return None
@@ -144,7 +145,7 @@ def comparable(rows, model, peer, key, ours):
         if key.startswith("time"):
             return None
         ours = pick(rows, model, "ours@" + peer)
-        if ours is None:
+        if ours is None or int(ours["points"]) != int(p["points"]):
             return None
     if math.isnan(num(ours, key)) or math.isnan(num(p, key)):
         return None
@@ -218,6 +219,8 @@ def margins(rows, peer, ours_method="ours"):
             ("; errors of ours at its count)" if at_peer else ")")
         o_err = at_peer or o
         line = [name] + [fmt(ratio(num(p, k), num(o_err, k)), "x") for k in keys]
+        if p.get("matched") == "no":  # unequal counts: times are not comparable
+            o1 = o2 = None
         line += [fmt(ratio(num(o1, "time_alg_s"), num(p, "time_alg_s")), "x") if o1 else "–",
                  fmt(ratio(num(o2, "time_alg_s"), num(p, "time_alg_s")), "x") if o2 else "–",
                  fmt(ratio(num(o1, "time_process_s"), num(p, "time_process_s")), "x") if o1 else "–"]
@@ -492,8 +495,8 @@ def unmatched(rows, group_key, group_label):
     bad = [f"{r['model']} {group_label} {r[group_key]}: {METHOD_LABEL.get(r['method'], r['method'])} "
            f"{int(r['points']):,} vs ours {int(pick(rows_of(rows, r, group_key), r['model'], 'ours')['points']):,}"
            for r in rows if r["method"] in CONTROL_PEERS and r.get("matched") == "no"]
-    return ("Peers whose count could not be matched within ±2 % (their errors are compared with ours at their "
-            "count, through TargetCount; their times with nothing): " + "; ".join(bad) + "."
+    return ("Peers whose count could not be matched within ±2 % (CGAL's are compared with ours at their "
+            "count, through TargetCount, on errors only; the others are left out): " + "; ".join(bad) + "."
             ) if bad else "Every peer was matched to our count within ±2 %."
 
 

@@ -235,7 +235,7 @@ std::string CsvLine(const Row &r)
          << err(e.normalizedDistance.rms) << ',' << err(e.normalizedDistance.max) << ','
          << err(e.normalizedDistance.p999) << ',' << (r.measured ? std::to_string(e.unconvergedCount) : "")
          << ',' << err(e.diagonal);
-    const bool ours = r.method == "ours";
+    const bool ours = r.method.rfind("ours", 0) == 0 && r.method != "ours-circular";
     auto oursInt = [&](int v) { return ours ? std::to_string(v) : std::string(); };
     line << ',' << (r.targetPercent > 0 ? Number(r.targetPercent) : "") << ','
          << (r.targetPoints > 0 ? std::to_string(r.targetPoints) : "") << ','
@@ -500,11 +500,13 @@ int Compare(const std::string &inputPath, const Options &opt)
                 r.peakMegabytes = f.peakMegabytes;
             }
             finish(r);
-            if (!peer.match.withinTolerance && wanted("ours")) {
+            if (!peer.match.withinTolerance && wanted("ours") && set.Count() > 0) {
                 // The peer cannot reach our count (CGAL's hierarchy has no output between ~42 %
-                // and ~58 % of the input): compare at its count instead, ours exact by TargetCount.
+                // and ~58 % of the input): compare at its count instead, ours exact by TargetCount
+                // (without an error bound, which could need more surfels than the count).
                 OursConfig atPeer = config;
                 atPeer.targetCount = set.Count();
+                atPeer.maxError = 0;
                 const vcg::gaussphere::ResamplingResult result = RunOurs(input, atPeer, threadCounts.front(), nullptr);
                 Row o = newRow("ours@" + peer.method);
                 o.threads = threadCounts.front();

@@ -33,7 +33,8 @@ struct NeighborGraph
     /// point whose k neighbours all coincide with it, the median spacing of the others
     /// (or 1e-3 when every point coincides: there is no scale to read).
     std::vector<float> spacing;
-    double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet)
+    double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet);
+                                    ///< reset it to -1 if the normals change
 
     int Size() const { return int(count.size()); }
     const int *begin(int i) const { return adjacency.data() + size_t(i) * stride; }

@@ -8,11 +8,13 @@
 // Clusters larger than `maxClusterSize` are split along their major axis whatever their
 // shape, so that flat regions keep surfels of bounded size.
 // Clusters holding a crease point (crease_points.h) get tighter limits of their own,
-// `creaseClusterSize` and `creaseMinSplitSize`: beside a crease a wide surfel rounds the
-// edge off, and an elongated one lying along the edge reaches far across it.
+// `creaseClusterSize` and `creaseMinSplitSize` (used where smaller than the general ones):
+// beside a crease a wide surfel rounds the edge off, and an elongated one lying along the
+// edge reaches far across it.
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
+#include <algorithm>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -49,10 +51,15 @@ inline int SplitElongatedClusters(const std::vector<vcg::Point3f> &points, const
         bool atCrease = false;
         if (param.creasePoints)
             for (const int *i = members.begin(c); i != members.end(c) && !atCrease; ++i) atCrease = (*param.creasePoints)[*i];
-        const int maxSize = atCrease ? param.creaseClusterSize : param.maxClusterSize;
-        const int minSplit = atCrease ? param.creaseMinSplitSize : param.minSplitSize;
+        // At a crease the limits only tighten: the smaller cap, the smaller never-split size.
+        int maxSize = param.maxClusterSize, minSplit = param.minSplitSize;
+        if (atCrease) {
+            if (param.creaseClusterSize > 0)
+                maxSize = maxSize > 0 ? std::min(maxSize, param.creaseClusterSize) : param.creaseClusterSize;
+            minSplit = std::min(minSplit, param.creaseMinSplitSize);
+        }
+        if (size < std::max(2, minSplit)) continue;
         const bool tooLarge = maxSize > 0 && size > maxSize;
-        if (size < std::max(2, minSplit) && !tooLarge) continue;
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (const int *i = members.begin(c); i != members.end(c); ++i)
             mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);

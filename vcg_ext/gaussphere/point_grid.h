@@ -226,7 +226,7 @@ public:
             std::vector<int> idx(k);
             std::vector<float> d2(k);
             std::vector<std::uint64_t> nearest(k + 1);
-#pragma omp for schedule(dynamic, 16)
+#pragma omp for schedule(dynamic, 1)
             for (int u = 0; u < int(unresolved.size()); ++u) {
                 const int i = unresolved[u];
                 int found = 0;
@@ -501,7 +501,7 @@ private:
     /// Inserts key into the sorted list nearest[0, found) of at most k keys.
     static void InsertNearest(std::uint64_t key, int k, std::uint64_t *nearest, int &found)
     {
-        if (found == k && key >= nearest[k - 1]) return;
+        if (k <= 0 || (found == k && key >= nearest[k - 1])) return;
         int pos = found < k ? found++ : k - 1;
         while (pos > 0 && key < nearest[pos - 1]) { nearest[pos] = nearest[pos - 1]; --pos; }
         nearest[pos] = key;

@@ -100,7 +100,7 @@ struct ResamplingParams
         if (!(convergenceFraction >= 0)) return "ConvergenceFraction must not be negative";
         if (maxClusterSize < 0) return "MaxClusterSize must be 0 (off) or positive";
         if (!(creaseAngle >= 0 && creaseAngle < 120)) return "CreaseAngle must be between 0 (off) and 120 degrees";
-        if (creaseClusterSize < 0) return "CreaseClusterSize must be 0 (off) or positive";
+        if (creaseClusterSize < 0 || creaseClusterSize == 1) return "CreaseClusterSize must be 0 (off) or at least 2";
         if (creaseMinSplitSize < 0) return "CreaseMinSplitSize must not be negative";
         if (targetCount < 0) return "TargetCount must not be negative";
         if (!(maxErrorFraction >= 0 && maxErrorFraction < 1)) return "MaxError must be between 0 (off) and 1";
