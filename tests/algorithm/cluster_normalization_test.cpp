@@ -186,3 +186,48 @@ TEST(ClusterNormalization, SizeCapSplitsLargeCompactClusters)
     const vcg::gaussphere::ClusterMembers members(c);
     for (int k = 0; k < c.clusterCount; ++k) EXPECT_LE(members.Size(k), 40);
 }
+
+namespace {
+
+/// A square 6 x 6 grid (ratio 1: never split for its shape), one cluster, with or without
+/// a crease point among its members.
+int SplitsOfSquare(const ClusterNormalizationParams &base, bool atCrease)
+{
+    const gstest::PointSet s = gstest::PlaneGrid(6, 6);
+    Clustering c = OneCluster(s.Size());
+    std::vector<char> crease(s.Size(), 0);
+    crease[0] = atCrease;
+    ClusterNormalizationParams p = base;
+    p.creasePoints = &crease;
+    return SplitElongatedClusters(s.points, p, c);
+}
+
+} // namespace
+
+// Clusters with a crease point are split above creaseClusterSize; the others keep the
+// general limit.
+TEST(ClusterNormalization, CreaseClustersGetTheTighterCap)
+{
+    ClusterNormalizationParams p = Params();
+    p.maxClusterSize = 64;
+    p.creaseClusterSize = 5;
+    EXPECT_EQ(SplitsOfSquare(p, false), 0) << "36 points, below the general cap of 64";
+    EXPECT_EQ(SplitsOfSquare(p, true), 1) << "36 points, above the crease cap of 5";
+}
+
+// The crease limits only ever tighten the general ones: no crease cap (0) or a larger one
+// leaves the general cap in force.
+TEST(ClusterNormalization, CreaseLimitsNeverLoosenTheGeneralOnes)
+{
+    ClusterNormalizationParams p = Params();
+    p.maxClusterSize = 16;
+    p.creaseClusterSize = 0;
+    EXPECT_EQ(SplitsOfSquare(p, true), 1) << "36 points, above the general cap of 16";
+    p.creaseClusterSize = 100;
+    EXPECT_EQ(SplitsOfSquare(p, true), 1);
+    // A never-split size larger than the general one does not protect crease clusters.
+    p.creaseClusterSize = 0;
+    p.minSplitSize = 6;
+    p.creaseMinSplitSize = 50;
+    EXPECT_EQ(SplitsOfSquare(p, true), 1);
+}
