@@ -99,7 +99,8 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichInt("TargetCount", 0, "Target surfel count",
         "Exact number of surfels wanted (0 = off): the filter picks the finest Gaussian sphere level "
         "that gives no more, then splits the clusters with the largest normal error until the count "
-        "is reached (or, below what level 2 gives, merges the most similar neighbouring clusters). "
+        "is reached (or, from a level giving at most 15% more, or below what level 2 gives, merges "
+        "the most similar neighbouring clusters). "
         "Overrides the Gaussian sphere level. Takes precedence over Target percentage."));
     par.addParam(RichFloat("TargetPercentage", 0.0f, "Target percentage",
         "Number of surfels wanted as a percentage of the input points (0 = off), e.g. 10 for one "
