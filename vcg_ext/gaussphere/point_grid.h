@@ -266,8 +266,9 @@ private:
     {
         const size_t n = points.size();
         vcg::Box3f box;
-        std::vector<float> coordinate(n);
+#pragma omp parallel for schedule(static, 1)
         for (int a = 0; a < 3; ++a) {
+            std::vector<float> coordinate(n);
             for (size_t i = 0; i < n; ++i) coordinate[i] = points[i][a];
             const size_t low = n / 1000, high = n - 1 - n / 1000;
             std::nth_element(coordinate.begin(), coordinate.begin() + low, coordinate.end());

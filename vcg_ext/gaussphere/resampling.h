@@ -167,7 +167,8 @@ template <class T>
 void Permute(const std::vector<int> &order, std::vector<T> &values)
 {
     std::vector<T> permuted(values.size());
-    for (size_t i = 0; i < order.size(); ++i) permuted[i] = values[order[i]];
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < int(order.size()); ++i) permuted[i] = values[order[i]];
     values.swap(permuted);
 }
 
@@ -195,25 +196,42 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::StageTimer timer;
     detail::Report(cb, 0, "Gaussian sphere resampling: reading points");
 
-    // Usable points, as flat float arrays; `source` maps them back to vertex indices.
+    // Usable points, as flat float arrays; `source` maps them back to vertex indices. Two
+    // parallel passes: which vertices are usable, then the copies at their prefix offsets.
     std::vector<vcg::Point3f> points, normals;
     std::vector<int> source;
     result.representative.assign(mesh.vert.size(), -1);
-    points.reserve(mesh.vn);
-    normals.reserve(mesh.vn);
-    source.reserve(mesh.vn);
-    for (size_t vi = 0; vi < mesh.vert.size(); ++vi) {
+    const int vertexCount = int(mesh.vert.size());
+    std::vector<char> usable(vertexCount, 0);
+    int deleted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : deleted)
+    for (int vi = 0; vi < vertexCount; ++vi) {
         const auto &v = mesh.vert[vi];
-        if (v.IsD()) continue;
-        ++stats.inputCount;
+        if (v.IsD()) { ++deleted; continue; }
         const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
-        const vcg::Point3d n = vcg::Point3d::Construct(v.cN()); // double: very long normals stay finite
-        const double len = n.Norm();
-        const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len);
-        if (!finite || !(len > 1e-30)) { ++stats.skippedCount; continue; }
-        points.push_back(p);
-        normals.push_back(vcg::Point3f::Construct(n / len));
-        source.push_back(int(vi));
+        const double len = vcg::Point3d::Construct(v.cN()).Norm(); // double: very long normals stay finite
+        usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&
+                     len > 1e-30;
+    }
+    std::vector<int> slot(vertexCount);
+    int kept = 0;
+    for (int vi = 0; vi < vertexCount; ++vi) {
+        slot[vi] = kept;
+        kept += usable[vi];
+    }
+    stats.inputCount = vertexCount - deleted;
+    stats.skippedCount = stats.inputCount - kept;
+    points.resize(kept);
+    normals.resize(kept);
+    source.resize(kept);
+#pragma omp parallel for schedule(static)
+    for (int vi = 0; vi < vertexCount; ++vi) {
+        if (!usable[vi]) continue;
+        const auto &v = mesh.vert[vi];
+        const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
+        points[slot[vi]] = vcg::Point3f::Construct(v.cP());
+        normals[slot[vi]] = vcg::Point3f::Construct(nrm / nrm.Norm());
+        source[slot[vi]] = vi;
     }
     const int n = int(points.size());
     if (n < 2)
