@@ -25,18 +25,14 @@ bench_build_then_run_in_xvfb -DGAUSSPHERE_BUILD_BENCH=ON -- "$@"
 
 gsbench="$build/bench/gsbench"
 meshlabserver="$build/stage/bin/meshlabserver"
+bench_choose_inputs
+bench_present_models bench
 if [ "$quick" = 1 ]; then
-  data="$root/sample_data"
   out="$root/bench/results/quick"
-  runs="${RUNS:-1}"
-  [ ${#models[@]} -gt 0 ] || models=(bunny fandisk)
   figure7_models=(bunny)
   figure7_levels=(16)
 else
-  data="$root/../shared/data"
   out="$root/bench/results"
-  runs="${RUNS:-3}"
-  [ ${#models[@]} -gt 0 ] || bench_all_models "$data"
   figure7_models=(bunny dragon igea)
   figure7_levels=(12 16 20 24)
 fi
@@ -46,21 +42,7 @@ work="${TMPDIR:-/tmp}/gsbench-work"
 mkdir -p "$raw" "$work"
 rm -f "$raw/table1.csv" "$raw/figure7.csv"
 
-{
-  echo "Run $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git -C "$root" rev-parse --short HEAD)"
-  echo "on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores,"
-  echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: times are indicative)."
-  echo "Timed runs per figure: $runs (median)."
-  # The build uses the working tree: say so when the measured code is not the commit's.
-  dirty="$(git -C "$root" status --porcelain -- vcg_ext | awk '{print $2}' | tr '\n' ' ')"
-  [ -z "$dirty" ] || echo "Built with uncommitted changes in: $dirty"
-} > "$out/header.txt"
-
-present=()
-for name in "${models[@]}"; do
-  if [ -f "$data/$name.ply" ]; then present+=("$name")
-  else echo "[bench] skip $name: $data/$name.ply not found"; fi
-done
+bench_header "" > "$out/header.txt"
 
 started=$SECONDS
 for name in "${present[@]}"; do

@@ -1,4 +1,5 @@
-# Shared by the benchmark scripts that drive gsbench (bench.sh, bench_control.sh); sourced,
+# Shared by the benchmark scripts that drive gsbench (bench.sh, bench_control.sh): arguments,
+# build, inputs, header. Sourced,
 # with `root`, `build` and `jobs` set by the caller.
 
 # bench_parse_args SCRIPT_NAME HELP_LINES ARGS...: sets `quick` (0/1) and `models` (names).
@@ -41,4 +42,43 @@ bench_all_models() {
     case "$name" in *_mesh) continue ;; esac
     [[ " ${models[*]} " == *" $name "* ]] || models+=("$name")
   done
+}
+
+# bench_choose_inputs: sets `data`, `runs` and, unless given, `models` for the quick run
+# (shipped samples, one timed run) or the full one (../shared/data, RUNS or 3 timed runs).
+bench_choose_inputs() {
+  if [ "$quick" = 1 ]; then
+    data="$root/sample_data"
+    runs="${RUNS:-1}"
+    [ ${#models[@]} -gt 0 ] || models=(bunny fandisk)
+  else
+    data="$root/../shared/data"
+    runs="${RUNS:-3}"
+    [ ${#models[@]} -gt 0 ] || bench_all_models "$data"
+  fi
+}
+
+# bench_present_models TAG: sets `present` to the `models` found in `data` as point sets,
+# saying why each other one is skipped; stops when none is left.
+bench_present_models() {
+  local tag=$1 name
+  present=()
+  for name in "${models[@]}"; do
+    case "$name" in *_mesh) echo "[$tag] skip $name: a mesh file, not a point set"; continue ;; esac
+    if [ -f "$data/$name.ply" ]; then present+=("$name")
+    else echo "[$tag] skip $name: $data/$name.ply not found"; fi
+  done
+  [ ${#present[@]} -gt 0 ] || { echo "[$tag] no model found in $data" >&2; exit 1; }
+}
+
+# bench_header RUNS_NOTE: the lines naming the run, the machine and the code measured.
+bench_header() {
+  echo "Run $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git -C "$root" rev-parse --short HEAD)"
+  echo "on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores,"
+  echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: times are indicative)."
+  echo "Timed runs per figure: $runs (median)$1."
+  # The build uses the working tree: say so when the measured code is not the commit's.
+  local dirty
+  dirty="$(git -C "$root" status --porcelain -- vcg_ext | awk '{print $2}' | tr '\n' ' ')"
+  [ -z "$dirty" ] || echo "Built with uncommitted changes in: $dirty"
 }

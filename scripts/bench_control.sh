@@ -33,17 +33,9 @@ bench_build_then_run_in_xvfb -DGAUSSPHERE_BUILD_TESTS=OFF -- "$@"
 
 gsbench="$build/bench/gsbench"
 meshlabserver="$build/stage/bin/meshlabserver"
-if [ "$quick" = 1 ]; then
-  data="$root/sample_data"
-  out="${TMPDIR:-/tmp}/gsbench-control-quick"
-  runs="${RUNS:-1}"
-  [ ${#models[@]} -gt 0 ] || models=(bunny fandisk)
-else
-  data="$root/../shared/data"
-  out="$root/bench/results"
-  runs="${RUNS:-3}"
-  [ ${#models[@]} -gt 0 ] || bench_all_models "$data"
-fi
+bench_choose_inputs
+bench_present_models control
+if [ "$quick" = 1 ]; then out="${TMPDIR:-/tmp}/gsbench-control-quick"; else out="$root/bench/results"; fi
 
 raw="$out/raw"
 work="${TMPDIR:-/tmp}/gsbench-control-work"
@@ -53,22 +45,8 @@ header="$raw/control_header.txt"
 loads="$work/loads.txt"
 : > "$loads"
 
-present=()
-for name in "${models[@]}"; do
-  case "$name" in *_mesh) echo "[control] skip $name: a mesh file, not a point set"; continue ;; esac
-  if [ -f "$data/$name.ply" ]; then present+=("$name")
-  else echo "[control] skip $name: $data/$name.ply not found"; fi
-done
-[ ${#present[@]} -gt 0 ] || { echo "[control] no model found in $data" >&2; exit 1; }
 
-{
-  echo "Run $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git -C "$root" rev-parse --short HEAD)"
-  echo "on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores,"
-  echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared: times are indicative)."
-  echo "Timed runs per figure: $runs (median); ours with 1 thread (the metric uses every core)."
-  dirty="$(git -C "$root" status --porcelain -- vcg_ext | awk '{print $2}' | tr '\n' ' ')"
-  [ -z "$dirty" ] || echo "Built with uncommitted changes in: $dirty"
-} > "$header"
+bench_header "; ours with 1 thread (the metric uses every core)" > "$header"
 
 compare() { # model, csv, methods, extra gsbench arguments...
   local name="$1" csv="$2" methods="$3"
