@@ -63,6 +63,25 @@ inline void FillUnknownSpacing(std::vector<float> &spacing)
         if (!(s > 0)) s = fallback;
 }
 
+/// The cone test of a chord between unit normals: |n_p - n_q| <= chord iff <n_p, n_q> >= this.
+inline float ConeMinDot(double chord) { return float(1.0 - 0.5 * chord * chord); }
+
+/// Writes the neighbours `ordered[0, found)` of point i into `slot`: those q with
+/// <n_i, n_q> >= minDot first, then the others, each group in its given order. Returns
+/// the number kept. `ordered` and `slot` must not overlap.
+inline int PartitionByCone(const std::vector<vcg::Point3f> &normals, int i, float minDot, const int *ordered,
+                           int found, int *slot)
+{
+    int kept = 0, dropped = 0;
+    int rejected[255];
+    for (int t = 0; t < found; ++t) {
+        if (normals[i].dot(normals[ordered[t]]) >= minDot) slot[kept++] = ordered[t];
+        else rejected[dropped++] = ordered[t];
+    }
+    std::copy(rejected, rejected + dropped, slot + kept);
+    return kept;
+}
+
 /// Orders each point's slots canonically: the neighbours q with |n_p - n_q| <= chord
 /// first, then the others, each group by increasing (distance, index); sets count. The
 /// result depends only on the chord, not on earlier calls.
@@ -71,11 +90,12 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
 {
     if (chord == g.chord) return;
     g.chord = chord;
-    const float minDot = float(1.0 - 0.5 * chord * chord);
+    const float minDot = ConeMinDot(chord);
     const int n = g.Size();
 #pragma omp parallel
     {
-        std::vector<std::uint64_t> keyed(g.stride), merged(g.stride), rejected(g.stride);
+        std::vector<std::uint64_t> keyed(g.stride), merged(g.stride);
+        std::vector<int> ordered(g.stride);
 #pragma omp for schedule(static)
         for (int i = 0; i < n; ++i) {
             int *slot = g.adjacency.data() + size_t(i) * g.stride;
@@ -87,13 +107,8 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
                 keyed[t] = DistanceIndexKey((points[slot[t]] - points[i]).SquaredNorm(), slot[t]);
             std::merge(keyed.begin(), keyed.begin() + g.count[i], keyed.begin() + g.count[i], keyed.begin() + found,
                        merged.begin());
-            int kept = 0, dropped = 0;
-            for (int t = 0; t < found; ++t) {
-                const int j = int(std::uint32_t(merged[t]));
-                if (normals[i].dot(normals[j]) >= minDot) slot[kept++] = j;
-                else rejected[dropped++] = merged[t];
-            }
-            for (int t = 0; t < dropped; ++t) slot[kept + t] = int(std::uint32_t(rejected[t]));
+            for (int t = 0; t < found; ++t) ordered[t] = int(std::uint32_t(merged[t]));
+            const int kept = PartitionByCone(normals, i, minDot, ordered.data(), found, slot);
             g.count[i] = std::uint8_t(kept);
         }
     }
@@ -119,22 +134,16 @@ inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &poi
     g.found.resize(n);
     g.spacing.resize(n);
     g.chord = param.coneChord;
-    const float minDot = float(1.0 - 0.5 * param.coneChord * param.coneChord);
+    const float minDot = ConeMinDot(param.coneChord);
     const bool complete = grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
         int near = 0;
         float sum = 0;
         for (int t = 0; t < found && near < 6; ++t)
             if (d2[t] > 0) { sum += std::sqrt(d2[t]); ++near; }
         g.spacing[i] = near > 0 ? sum / near : 0.f;
-        // Partition as RestrictToCone does: kept neighbours first, each run by distance.
+        // The same partition as RestrictToCone, so that it can skip this chord later.
         int *slot = g.adjacency.data() + size_t(i) * g.stride;
-        int kept = 0, dropped = 0;
-        int rejected[255];
-        for (int t = 0; t < found; ++t) {
-            if (normals[i].dot(normals[idx[t]]) >= minDot) slot[kept++] = idx[t];
-            else rejected[dropped++] = idx[t];
-        }
-        std::copy(rejected, rejected + dropped, slot + kept);
+        const int kept = PartitionByCone(normals, i, minDot, idx, found, slot);
         std::fill(slot + found, slot + g.stride, -1);
         g.found[i] = std::uint8_t(found);
         g.count[i] = std::uint8_t(kept);
