@@ -200,10 +200,7 @@ public:
                             continue;
                         }
                     }
-                    for (int t = 0; t < found; ++t) {
-                        d2[t] = DistanceOfKey(nearest[t]);
-                        idx[t] = int(std::uint32_t(nearest[t]));
-                    }
+                    UnpackKeys(nearest.data(), found, idx.data(), d2.data());
                     previousKth = k > 0 ? d2[k - 1] : -1;
                     lastKth = std::max(previousKth, 0.f);
                     previous = q;
@@ -235,10 +232,7 @@ public:
                 } else {
                     for (int j = 0; j < n; ++j)
                         if (j != i) InsertNearest(DistanceIndexKey((points_[j] - points_[i]).SquaredNorm(), j), k, nearest.data(), found);
-                    for (int t = 0; t < found; ++t) {
-                        d2[t] = DistanceOfKey(nearest[t]);
-                        idx[t] = int(std::uint32_t(nearest[t]));
-                    }
+                    UnpackKeys(nearest.data(), found, idx.data(), d2.data());
                 }
                 sink(i, idx.data(), d2.data(), found);
             }
@@ -496,6 +490,15 @@ private:
                 const std::uint64_t key = DistanceIndexKey((points_[order_[s]] - q).SquaredNorm(), order_[s]);
                 if (order_[s] != i) InsertNearest(key, k, nearest, found);
             }
+        }
+    }
+
+    /// Splits the keys nearest[0, found) into point indices and squared distances.
+    static void UnpackKeys(const std::uint64_t *nearest, int found, int *idx, float *d2)
+    {
+        for (int t = 0; t < found; ++t) {
+            d2[t] = DistanceOfKey(nearest[t]);
+            idx[t] = int(std::uint32_t(nearest[t]));
         }
     }
 
