@@ -99,6 +99,23 @@ TEST(PointGrid, DuplicatesAndTinySetsMatchBruteForce)
     ExpectExactAllKNearest(crowded, 16);
 }
 
+// Many exact copies of one position are answered from the copies alone (else M copies cost
+// M^2): in a crowded cell among other points (with a group of exactly k copies, which the
+// search must answer, beside it), and among the far outliers that bypass the grid.
+TEST(PointGrid, ManyCopiesOfOnePositionMatchBruteForce)
+{
+    std::vector<P3> crowded = SpherePoints(2000, 8);
+    for (int c = 0; c < 600; ++c) crowded.push_back(crowded[0]);
+    for (int c = 0; c < 15; ++c) crowded.push_back(crowded[1]); // 16 copies: k - 1 others each
+    std::swap(crowded[5], crowded[2300]); // copies not only at the end of the index range
+    ExpectExactAllKNearest(crowded, 16);
+
+    std::vector<P3> farCopies = SpherePoints(3500, 9);
+    for (int c = 0; c < 3; ++c) farCopies.push_back(P3(1e5f, 0, 0)); // < 0.1 %: outside the grid
+    farCopies.push_back(P3(-1e5f, 0, 0));
+    ExpectExactAllKNearest(farCopies, 2);
+}
+
 TEST(PointGrid, PlanarGridMatchesBruteForce)
 {
     std::vector<P3> pts;

@@ -13,7 +13,8 @@
 // the search grows to 5x5x5 and 7x7x7 blocks, and the few points still unresolved
 // (isolated outliers) are answered by a scan of every point (up to 8 of them) or a
 // kd-tree, so the result is exact and the cost stays O(N) for surface samplings,
-// O(N log N) at worst.
+// O(N log N) at worst. Points with more than k exact copies (one cell, or the outliers) are
+// answered from their copies alone, so that M copies do not cost M^2.
 //
 // Cell size. The grid aims at about `pointsPerCell` points per occupied cell. For a
 // surface the count of occupied cells scales with area / size^2, so counting the occupied
@@ -30,6 +31,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -148,6 +150,8 @@ public:
             Block block;
             float lastKth = 0; // k-th squared distance of the last point answered
             std::vector<int> localUnresolved;
+            std::vector<char> isCopy;     // per slot of a crowded cell: answered by AnswerCopies
+            std::vector<int> byPosition;  // AnswerCopies' scratch
 #pragma omp for schedule(dynamic, 64)
             for (int c = 0; c < CellCount(); ++c) {
                 if (cancelled.load(std::memory_order_relaxed)) continue;
@@ -165,7 +169,11 @@ public:
                 // (triangle inequality), so most candidates are dropped by one comparison.
                 float previousKth = -1;
                 Point3 previous;
-                for (int s = cellStart_[c]; s < cellStart_[c + 1]; ++s) {
+                const int first = cellStart_[c], size = cellStart_[c + 1] - first;
+                const bool copies = size > kCrowdedCell && k > 0 &&
+                                    AnswerCopies(&order_[first], size, k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0;
+                for (int s = first; s < first + size; ++s) {
+                    if (copies && isCopy[s - first]) continue;
                     const int i = order_[s];
                     const Point3 &q = points_[i];
                     const float margin2 = Squared(Margin(i, home, 1));
@@ -214,6 +222,17 @@ public:
         unresolved.insert(unresolved.end(), far_.begin(), far_.end());
         if (unresolved.empty()) return true;
         std::sort(unresolved.begin(), unresolved.end());
+        if (int(unresolved.size()) > k && k > 0) { // copies of a far point are far too: all in the list
+            std::vector<char> isCopy;
+            std::vector<int> byPosition, idx(k);
+            std::vector<float> d2(k);
+            if (AnswerCopies(unresolved.data(), int(unresolved.size()), k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0) {
+                size_t kept = 0;
+                for (size_t u = 0; u < unresolved.size(); ++u)
+                    if (!isCopy[u]) unresolved[kept++] = unresolved[u];
+                unresolved.resize(kept);
+            }
+        }
         // A handful of isolated points is cheaper to answer by a scan of every point
         // than by building a tree over all of them.
         const bool scanAll = unresolved.size() <= kMaxScannedQueries;
@@ -247,6 +266,7 @@ private:
     static constexpr size_t kMaxScannedQueries = 8;
     static constexpr float kGuessGrowth = 1.3f; // measured: 1.2-1.4 best on scans
     static constexpr int kMaxRanked = 96;       // candidates ranked by counting; beyond, selected
+    static constexpr int kCrowdedCell = 96;     // cells with more points are checked for copies
 
     /// An occupied cell near the home cell: its point range and its box.
     struct NearbyCell { int begin, end; float low[3], high[3]; };
@@ -468,6 +488,40 @@ private:
         std::sort(keys, keys + k);
         std::copy(keys, keys + k, nearest);
         return k;
+    }
+
+    /// Answers at once the points of ids[0, count) (ascending indices) that share their exact
+    /// position with at least k others: their k nearest are the k lowest-index copies, at
+    /// distance 0, which no other point precedes in (distance, index) order. Otherwise M copies
+    /// of one position (scanners write invalid returns as the origin) would each scan all M.
+    /// Precondition: every copy of a point of ids is in ids. Sets isCopy[t] for each ids[t]
+    /// answered, calls sink for it, and returns how many were answered. idx, d2: k entries.
+    template <class Sink>
+    int AnswerCopies(const int *ids, int count, int k, Sink &sink, std::vector<char> &isCopy,
+                     std::vector<int> &byPosition, int *idx, float *d2) const
+    {
+        byPosition.resize(count);
+        for (int t = 0; t < count; ++t) byPosition[t] = t;
+        auto position = [&](int t) { const Point3 &p = points_[ids[t]]; return std::make_tuple(p[0], p[1], p[2]); };
+        std::sort(byPosition.begin(), byPosition.end(), [&](int a, int b) {
+            return position(a) < position(b) || (position(a) == position(b) && a < b);
+        });
+        isCopy.assign(count, 0);
+        int answered = 0;
+        for (int run = 0, end; run < count; run = end) {
+            for (end = run + 1; end < count && position(byPosition[end]) == position(byPosition[run]);) ++end;
+            if (end - run <= k) continue; // fewer than k other copies: the search answers
+            std::fill(d2, d2 + k, 0.f);
+            for (int t = run; t < end; ++t) {
+                int found = 0;
+                for (int u = run; found < k; ++u)
+                    if (u != t) idx[found++] = ids[byPosition[u]];
+                isCopy[byPosition[t]] = 1;
+                sink(ids[byPosition[t]], idx, d2, k);
+            }
+            answered += end - run;
+        }
+        return answered;
     }
 
     /// Adds the points of `cells` to the running k-nearest list of point i, skipping the
