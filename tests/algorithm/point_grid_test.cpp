@@ -116,6 +116,17 @@ TEST(PointGrid, ManyCopiesOfOnePositionMatchBruteForce)
     ExpectExactAllKNearest(farCopies, 2);
 }
 
+// A dense clump the cell size does not resolve (more than 64 x 8 points in one cell, none
+// coincident) is answered by the kd-tree, exactly.
+TEST(PointGrid, DenseClumpMatchesBruteForce)
+{
+    std::vector<P3> pts = SpherePoints(2000, 10);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> jitter(-1e-4f, 1e-4f);
+    for (int c = 0; c < 700; ++c) pts.push_back(pts[0] + P3(jitter(rng), jitter(rng), jitter(rng)));
+    ExpectExactAllKNearest(pts, 16);
+}
+
 TEST(PointGrid, PlanarGridMatchesBruteForce)
 {
     std::vector<P3> pts;

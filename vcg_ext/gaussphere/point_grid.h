@@ -14,7 +14,9 @@
 // (isolated outliers) are answered by a scan of every point (up to 8 of them) or a
 // kd-tree, so the result is exact and the cost stays O(N) for surface samplings,
 // O(N log N) at worst. Points with more than k exact copies (one cell, or the outliers) are
-// answered from their copies alone, so that M copies do not cost M^2.
+// answered from their copies alone, so that M copies do not cost M^2, and the other points
+// of a cell holding more than 64 times the intended count (a dense clump the cell size
+// does not resolve) go to the kd-tree.
 //
 // Cell size. The grid aims at about `pointsPerCell` points per occupied cell. For a
 // surface the count of occupied cells scales with area / size^2, so counting the occupied
@@ -82,7 +84,7 @@ public:
 
     /// Precondition: finite points.
     explicit PointGrid(const std::vector<Point3> &points, double pointsPerCell = 8.0)
-        : points_(points)
+        : points_(points), maxGridCell_(int(std::min(64 * pointsPerCell, 1e6)))
     {
         const int n = int(points.size());
         if (n == 0) return;
@@ -175,6 +177,10 @@ public:
                 for (int s = first; s < first + size; ++s) {
                     if (copies && isCopy[s - first]) continue;
                     const int i = order_[s];
+                    if (size > maxGridCell_) { // a dense clump: the grid would scan it per point
+                        localUnresolved.push_back(i);
+                        continue;
+                    }
                     const Point3 &q = points_[i];
                     const float margin2 = Squared(Margin(i, home, 1));
                     int found = 0;
@@ -593,6 +599,7 @@ private:
     const std::vector<Point3> &points_;
     vcg::Box3f box_;
     double cellSize_ = 1.0;
+    int maxGridCell_; // cells with more points go to the kd-tree, after their copies
     std::vector<int> order_;
     std::vector<int> far_;          // points outside the grid box
     std::vector<int> cellStart_;
