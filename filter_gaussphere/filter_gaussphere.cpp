@@ -106,9 +106,12 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "Number of surfels wanted as a percentage of the input points (0 = off), e.g. 10 for one "
         "surfel per ten points. Used when Target surfel count is 0."));
     par.addParam(RichFloat("MaxError", 0.0f, "Maximum error (fraction of diagonal)",
-        "Optional bound on the distance from every input point to the plane of its surfel, as a "
-        "fraction of the bounding box diagonal, e.g. 0.001 (0 = off). Clusters that exceed it are split "
-        "until none does. With a target count, the bound wins when both cannot hold."));
+        "Optional bound on the distance from every input point to the surface the surfels define, as a "
+        "fraction of the bounding box diagonal, e.g. 0.002 (0 = off). Clusters are split until every point "
+        "lies within it of its own surfel's plane, then of the blended surface of all surfels (as the Surfel "
+        "Approximation Error filter measures it). Near sharp creases that blend rounds the edge by a fraction "
+        "of the sample spacing even when every surfel is one point: points it cannot bring within the bound "
+        "are counted in the log. With a target count, the bound wins when both cannot hold."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
 }
@@ -223,8 +226,23 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
         s.secondsPropagation, s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
         Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
-            "for the target count, %d split(s) for the error bound",
-            s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound);
+            "for the target count, %d + %d split(s) for the error bound (own planes + blended surface)",
+            s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound,
+            s.splitsForSurfaceBound);
+    if (param.maxErrorFraction > 0) {
+        const double diagonal = s.diagonal;
+        if (s.pointsAboveErrorBound == 0)
+            Log("Gaussian sphere resampling error bound met: every point within %g of the blended surface "
+                "(largest distance %g = %.5f x diagonal, %d projection round(s))",
+                param.maxErrorFraction * diagonal, s.surfaceErrorMax * diagonal, s.surfaceErrorMax, s.surfaceBoundRounds);
+        else
+            Log(GLLogStream::WARNING,
+                "Gaussian sphere resampling error bound: %d point(s) remain beyond %g of the blended surface "
+                "(largest %g = %.5f x diagonal): the surfels around them are split as far as they go, and the "
+                "blend cannot follow sharp creases or thin parts closer at this sampling",
+                s.pointsAboveErrorBound, param.maxErrorFraction * diagonal, s.surfaceErrorMax * diagonal,
+                s.surfaceErrorMax);
+    }
     if (param.targetCount > 0 && s.outputCount != param.targetCount)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling: %d surfels instead of the %d requested (%s)",
             s.outputCount, param.targetCount,

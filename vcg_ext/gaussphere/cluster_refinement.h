@@ -97,28 +97,7 @@ public:
         return splits;
     }
 
-private:
     int Size(int c) const { return range_[c].second - range_[c].first; }
-    const int *Begin(int c) const { return index_.data() + range_[c].first; }
-    const int *End(int c) const { return index_.data() + range_[c].second; }
-
-    double NormalError(int c) const
-    {
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (const int *i = Begin(c); i != End(c); ++i) mean += detail::ToEigen(normals_[*i]);
-        mean /= Size(c);
-        // sum |n_i - mean|^2 = sum |n_i|^2 - size |mean|^2 for the unconstrained minimizer.
-        return std::max(0.0, Size(c) * (1.0 - mean.squaredNorm()));
-    }
-
-    double PlaneDistance(int c) const
-    {
-        const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
-        double worst = 0;
-        for (const int *i = Begin(c); i != End(c); ++i)
-            worst = std::max(worst, std::abs((detail::ToEigen(points_[*i]) - f.centroid).dot(f.normal)));
-        return worst;
-    }
 
     /// Splits cluster c in two; returns the new cluster's index, or -1 if every member
     /// projects to the same side along each candidate direction (u, v, then the normal).
@@ -140,6 +119,28 @@ private:
             return added;
         }
         return -1;
+    }
+
+private:
+    const int *Begin(int c) const { return index_.data() + range_[c].first; }
+    const int *End(int c) const { return index_.data() + range_[c].second; }
+
+    double NormalError(int c) const
+    {
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int *i = Begin(c); i != End(c); ++i) mean += detail::ToEigen(normals_[*i]);
+        mean /= Size(c);
+        // sum |n_i - mean|^2 = sum |n_i|^2 - size |mean|^2 for the unconstrained minimizer.
+        return std::max(0.0, Size(c) * (1.0 - mean.squaredNorm()));
+    }
+
+    double PlaneDistance(int c) const
+    {
+        const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
+        double worst = 0;
+        for (const int *i = Begin(c); i != End(c); ++i)
+            worst = std::max(worst, std::abs((detail::ToEigen(points_[*i]) - f.centroid).dot(f.normal)));
+        return worst;
     }
 
     const std::vector<vcg::Point3f> &points_, &normals_;

@@ -60,6 +60,7 @@
 #include "index_propagation.h"
 #include "point_grid.h"
 #include "singleton_rejoining.h"
+#include "surface_error_bound.h"
 #include "surfel_generation.h"
 
 namespace vcg {
@@ -85,8 +86,9 @@ struct ResamplingParams
     double coverageMargin = 0.75;    ///< ellipse growth, in local sample spacings
     int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
     double mergeWithin = 1.15;       ///< targetCount: merge down from a level giving at most this x the target
-    double maxErrorFraction = 0;     ///< bound on point-to-surfel-plane distance, as a
-                                     ///< fraction of the bbox diagonal (0 = off)
+    double maxErrorFraction = 0;     ///< bound on each point's distance to its surfel's plane, then
+                                     ///< to the blended surface (surface_error_bound.h), as a fraction
+                                     ///< of the bbox diagonal (0 = off)
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string Validate() const
@@ -121,7 +123,12 @@ struct ResamplingStats
     int levelsTried = 0;           ///< levels clustered while searching for targetCount
     int splitsForTarget = 0;       ///< clusters split to reach targetCount exactly
     int mergesForTarget = 0;       ///< cluster pairs merged to reach a targetCount below level 2's count
-    int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction
+    int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction on the own surfel planes
+    int splitsForSurfaceBound = 0; ///< ... and then on the blended surface (surface_error_bound.h)
+    int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
+    int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
+    double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
+    double diagonal = 0;           ///< bounding-box diagonal of the usable points
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
@@ -186,6 +193,10 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 /// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero.
 /// Throws std::invalid_argument for invalid parameters or fewer than two usable points,
 /// ResamplingCancelled when the callback returns false.
+/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
+/// models of bench/ need at most 5.
+constexpr int kSurfaceBoundRounds = 16;
+
 template <class MeshType>
 ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &param, vcg::CallBackPos *cb = nullptr)
 {
@@ -241,6 +252,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     vcg::Box3f box;
     for (const auto &p : points) box.Add(p);
     const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * box.Diag();
+    stats.diagonal = box.Diag();
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
@@ -365,11 +377,22 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // Refinements beyond the paper: error bound, then exact size.
     const double invH2 = 1.0 / (weightWidth * weightWidth);
+    SurfelGenerationParams surfelParam;
+    surfelParam.weightWidth = weightWidth;
+    surfelParam.coverageMargin = param.coverageMargin;
     if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
         detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(points, normals, clusters, invH2);
-        if (param.maxErrorFraction > 0)
-            stats.splitsForErrorBound = refiner.SplitToErrorBound(param.maxErrorFraction * box.Diag());
+        if (param.maxErrorFraction > 0) {
+            const double bound = param.maxErrorFraction * stats.diagonal;
+            stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
+            const SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
+                points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters);
+            stats.splitsForSurfaceBound = surface.splits;
+            stats.surfaceBoundRounds = surface.rounds;
+            stats.pointsAboveErrorBound = surface.pointsAbove;
+            stats.surfaceErrorMax = stats.diagonal > 0 ? surface.maxDistance / stats.diagonal : 0.0;
+        }
         if (param.targetCount > 0)
             stats.splitsForTarget = refiner.SplitToCount(param.targetCount);
     }
@@ -379,9 +402,6 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
-    SurfelGenerationParams surfelParam;
-    surfelParam.weightWidth = weightWidth;
-    surfelParam.coverageMargin = param.coverageMargin;
     result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
     double sumSquares = 0;
     for (int i = 0; i < n; ++i) {

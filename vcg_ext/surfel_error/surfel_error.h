@@ -380,6 +380,15 @@ inline bool EllipseOf(const SurfelErrorAttributes& a, std::size_t vertex, const 
     return true;
 }
 
+/// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
+inline void SetWidths(double major, double minor, double sigma, double smallestSize, BlendingSurfel& s)
+{
+    major = std::max(major, smallestSize);
+    minor = std::max(minor, smallestSize);
+    s.majorInverseWidth2 = 1.0 / (sigma * major * sigma * major);
+    s.minorInverseWidth2 = 1.0 / (sigma * minor * sigma * minor);
+}
+
 /// Mean distance from centers[i] to its `count` nearest other centers (0 if it has none).
 inline double LocalSpacing(const CenterTree& tree, const std::vector<Point3d>& centers, std::size_t i,
                            int count, CenterTree::Queue& queue)
@@ -448,16 +457,56 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
                                     ? radius
                                     : LocalSpacing(tree, centers, i, params.spacingNeighborCount, queue);
             }
-            major = std::max(major, smallestSize);
-            minor = std::max(minor, smallestSize);
-            s.majorInverseWidth2 = 1.0 / (sigma * major * sigma * major);
-            s.minorInverseWidth2 = 1.0 / (sigma * minor * sigma * minor);
+            SetWidths(major, minor, sigma, smallestSize, s);
         }
     }
     return SurfelSurface(std::move(surfels), std::move(tree), params.neighborCount);
 }
 
 } // namespace surfel_error_detail
+
+using surfel_error_detail::SurfelSurface;
+
+/** The surface of elliptical surfels given as arrays (what a resampler has before any mesh is
+ * written), with the operator of ComputeSurfelError: project a point q with
+ * surface.Project(q, n_q, params.maxIterations, params.convergenceTolerance × diagonal, scratch);
+ * afterwards scratch.queue holds the surfels blended at the last step.
+ * \pre the four arrays have the same non-zero size; centers finite, normals of unit length,
+ *      majorAxes[i] and minorAxes[i] tangent semi-axis vectors, the major one non-zero.
+ */
+inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& centers,
+                                              const std::vector<Point3f>& normals,
+                                              const std::vector<Point3f>& majorAxes,
+                                              const std::vector<Point3f>& minorAxes,
+                                              const SurfelErrorParams& params = SurfelErrorParams())
+{
+    using namespace surfel_error_detail;
+    CheckParams(params);
+    const std::size_t count = centers.size();
+    if (count == 0 || normals.size() != count || majorAxes.size() != count || minorAxes.size() != count)
+        throw std::invalid_argument("surfel surface: give one center, normal and pair of axes per surfel");
+    std::vector<BlendingSurfel> surfels(count);
+    std::vector<Point3d> centersD(count);
+    Box3d box;
+    for (std::size_t i = 0; i < count; ++i) {
+        centersD[i] = Point3d::Construct(centers[i]);
+        box.Add(centersD[i]);
+    }
+    const double smallestSize = box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0;
+    SurfelErrorAttributes axes;
+    axes.ellipseMajorAxes = &majorAxes;
+    axes.ellipseMinorAxes = &minorAxes;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < long(count); ++i) {
+        BlendingSurfel& s = surfels[i];
+        s.center = centersD[i];
+        s.normal = UnitOrZero(Point3d::Construct(normals[i]));
+        double major = 0, minor = 0;
+        EllipseOf(axes, std::size_t(i), s.normal, major, minor, s.minorDirection);
+        SetWidths(major, minor, params.widthFactor, smallestSize, s);
+    }
+    return SurfelSurface(std::move(surfels), CenterTree(centersD), params.neighborCount);
+}
 
 /** Measures how well the surfels S' approximate the oriented point set S (see the file header
  * for the exact operator and figures).
