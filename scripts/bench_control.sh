@@ -10,7 +10,7 @@
 # excluded). Absent ones are skipped with a reason.
 #   (a) targets 5, 10, 20, 30 % of the input (ours: ResamplingParams::targetCount, level search
 #       from n = 8) -> bench/results/control_targets.md/.csv
-#   (b) error bounds 0.002 and 0.001 x bbox diagonal at n = 8 (maxErrorFraction), plus the
+#   (b) error bounds 0.025, 0.01 and 0.002 x bbox diagonal at n = 8 (maxErrorFraction), plus the
 #       metric's floor S' = S -> bench/results/control_error_bound.md/.csv
 #   raw gsbench rows in bench/results/raw/control_{targets,error_bound}.csv, the machine and
 #   its load in bench/results/raw/control_header.txt
@@ -18,14 +18,14 @@
 #
 # Environment: BUILD_DIR (default <repo>/build-control), JOBS (default 2), RUNS (timed runs per
 # figure, median; default 3), TARGETS (default "5 10 20 30"), POISSON_TARGETS (targets at which
-# MeshLab Poisson runs; default: all of TARGETS), ERRORS (default "0.002 0.001").
+# MeshLab Poisson runs; default: all of TARGETS), ERRORS (default "0.025 0.01 0.002").
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-control}"
 jobs="${JOBS:-2}"
 targets="${TARGETS:-5 10 20 30}"
 poisson_targets="${POISSON_TARGETS:-$targets}"
-errors="${ERRORS:-0.002 0.001}"
+errors="${ERRORS:-0.025 0.01 0.002}"
 
 source "$root/scripts/bench_common.sh"
 bench_parse_args bench_control.sh 23 "$@"

@@ -27,10 +27,12 @@
 //       --target-percent P  ours outputs exactly round(P % of the input) surfels (targetCount;
 //                           the level N is where its level search starts)
 //       --max-error E       ours splits clusters until every point lies within E x bbox
-//                           diagonal of its own surfel's plane (maxErrorFraction)
+//                           diagonal of its own surfel's plane, then of the blended surface
+//                           the metric projects on, as far as splitting can (maxErrorFraction)
 //     The peers are matched to ours' resulting count as always. With --max-error every row
 //     also reports the fraction of input points whose metric distance D* exceeds E, and ours'
-//     rows the largest distance to the own surfel's plane (the quantity the bound is on).
+//     rows the largest distance to the own surfel's plane, the splits of each stage and the
+//     points ours reports beyond E (those the blend cannot bring closer).
 //
 //   gsbench run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]
 //               [--variation V] [--cell C] [--target-count C] [--max-error E]
@@ -169,8 +171,8 @@ void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, Simplified
 }
 
 /// Largest distance of an input point to the plane of its own surfel (centre, normal), over the
-/// bounding-box diagonal of the input: what maxErrorFraction bounds (the metric's D* instead
-/// projects on the blended surface of all surfels).
+/// bounding-box diagonal of the input: what maxErrorFraction bounds first (then D*, the distance
+/// to the blended surface of all surfels, as far as splitting can).
 double MaxOwnPlaneDistance(const PointMesh &input, const vcg::gaussphere::ResamplingResult &result)
 {
     double worst = 0;
@@ -200,6 +202,7 @@ struct Row
     double targetPercent = 0, maxError = 0;
     int targetPoints = 0;
     int levelUsed = 0, splitsForErrorBound = 0, splitsForTarget = 0, mergesForTarget = 0; ///< ours only
+    int splitsForSurfaceBound = 0, pointsAboveBound = 0; ///< ours only: ResamplingStats
     double ownPlaneMax = kNaN;      ///< ours only: see MaxOwnPlaneDistance
     double dstarAboveFraction = kNaN; ///< with maxError: fraction of input points with D* > maxError
 };
@@ -209,7 +212,7 @@ const char *kCsvHeader =
     "time_alg_s,time_process_s,peak_mb,l21_own_rms,l21_own_max,l21_own_p999,l21_blend_rms,"
     "l21_blend_max,l21_blend_p999,dstar_rms,dstar_max,dstar_p999,unconverged,diagonal,"
     "target_percent,target_points,max_error,level_used,splits_error_bound,splits_target,merges_target,"
-    "own_plane_max,dstar_above_max_error";
+    "own_plane_max,dstar_above_max_error,splits_surface_bound,points_above_bound";
 
 std::string Number(double v, int digits = 6)
 {
@@ -241,7 +244,8 @@ std::string CsvLine(const Row &r)
          << (r.targetPoints > 0 ? std::to_string(r.targetPoints) : "") << ','
          << (r.maxError > 0 ? Number(r.maxError) : "") << ',' << oursInt(r.levelUsed) << ','
          << oursInt(r.splitsForErrorBound) << ',' << oursInt(r.splitsForTarget) << ',' << oursInt(r.mergesForTarget)
-         << ',' << Number(r.ownPlaneMax) << ',' << Number(r.dstarAboveFraction);
+         << ',' << Number(r.ownPlaneMax) << ',' << Number(r.dstarAboveFraction) << ','
+         << oursInt(r.splitsForSurfaceBound) << ',' << oursInt(r.pointsAboveBound);
     return line.str();
 }
 
@@ -400,6 +404,8 @@ int Compare(const std::string &inputPath, const Options &opt)
             });
             r.levelUsed = result.stats.levelUsed;
             r.splitsForErrorBound = result.stats.splitsForErrorBound;
+            r.splitsForSurfaceBound = result.stats.splitsForSurfaceBound;
+            r.pointsAboveBound = result.stats.pointsAboveErrorBound;
             r.splitsForTarget = result.stats.splitsForTarget;
             r.mergesForTarget = result.stats.mergesForTarget;
             r.ownPlaneMax = MaxOwnPlaneDistance(input, result);
