@@ -456,7 +456,7 @@ def control_wins(rows, group_key, group_label, metrics=CONTROL_METRICS):
         for peer in CONTROL_PEERS:
             line, any_model = [group, METHOD_LABEL[peer]], False
             for key, heading, _ in metrics:
-                won, total = 0, 0
+                won, total, equal = 0, 0, 0
                 for model in models_in_order(grows):
                     pair = comparable(grows, model, peer, time_key(peer) if key == "time" else key,
                                       pick(grows, model, "ours"))
@@ -469,10 +469,12 @@ def control_wins(rows, group_key, group_label, metrics=CONTROL_METRICS):
                     total += 1
                     if vo < vp:
                         won += 1
+                    elif vo == vp:
+                        equal += 1  # e.g. no point beyond ε for either: neither lower
                     else:
                         lost.append((ratio(vo, vp), model, group, peer, heading))
                 any_model |= total > 0
-                line.append(f"{won}/{total}" if total else "–")
+                line.append((f"{won}/{total}" + (f" ({equal} equal)" if equal else "")) if total else "–")
             if any_model:
                 lines.append(line)
     return md_table(headings, lines), lost

@@ -4,7 +4,9 @@
 // metric, independently of the resampler's own figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <vcg_ext/gaussphere/surfel_mesh.h>
@@ -43,6 +45,17 @@ Measured Measure(const gstest::PointSet &s, const ResamplingResult &r)
     return m;
 }
 
+/// Largest distance of a point to its own surfel's plane, over the bounding-box diagonal.
+double MaxOwnPlaneDistance(const gstest::PointSet &s, const ResamplingResult &r)
+{
+    double worst = 0;
+    for (int i = 0; i < s.Size(); ++i) {
+        const Surfel &f = r.surfels[r.representative[i]];
+        worst = std::max(worst, std::abs(gstest::Dot(s.points[i] - f.position, f.normal)));
+    }
+    return worst / r.stats.diagonal;
+}
+
 gstest::PointSet BumpySphere(int n, unsigned seed)
 {
     // A sphere with a low-frequency bump: smooth, so a bound a few times the metric's floor
@@ -77,6 +90,7 @@ TEST(ErrorBound, MetBoundIsConfirmedByTheMetric)
     const Measured m = Measure(s, r);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
     EXPECT_LE(m.stats.normalizedDistance.max, bound * (1 + 1e-5));
+    EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
     EXPECT_NEAR(r.stats.surfaceErrorMax, m.stats.normalizedDistance.max, 1e-6 * bound + 1e-9);
     EXPECT_GT(r.surfels.size(), plain.surfels.size()) << "meeting a tighter bound takes more surfels";
     EXPECT_GT(r.stats.splitsForSurfaceBound, 0) << "the own planes alone did not meet it";
@@ -103,6 +117,7 @@ TEST(ErrorBound, UnreachableBoundLeavesOnlySingletonsAndReportsThem)
     EXPECT_GT(above, 0);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, above);
     EXPECT_LT(r.stats.surfaceBoundRounds, kSurfaceBoundRounds);
+    EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5)) << "the own planes hold even where the blend cannot";
     EXPECT_LT(m.stats.normalizedDistance.max, unbounded);
 }
 
@@ -122,6 +137,16 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     EXPECT_EQ(one.representative, two.representative);
     EXPECT_EQ(one.stats.pointsAboveErrorBound, two.stats.pointsAboveErrorBound);
     EXPECT_EQ(one.stats.surfaceErrorMax, two.stats.surfaceErrorMax);
+}
+
+bool StopInSurfaceRounds(int, const char *what) { return std::strstr(what, "error bound on the surface") == nullptr; }
+
+// The projection rounds report progress, and a callback can stop them.
+TEST(ErrorBound, CallbackCanCancelTheSurfaceRounds)
+{
+    OrientedPointMesh m;
+    gstest::ToMesh(gstest::CubeSurface(16, true), m);
+    EXPECT_THROW(ResamplePointSet(m, Bounded(1e-4), StopInSurfaceRounds), ResamplingCancelled);
 }
 
 } // namespace

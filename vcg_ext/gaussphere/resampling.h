@@ -43,6 +43,7 @@
 #ifndef VCG_EXT_GAUSSPHERE_RESAMPLING_H
 #define VCG_EXT_GAUSSPHERE_RESAMPLING_H
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -386,8 +387,14 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         if (param.maxErrorFraction > 0) {
             const double bound = param.maxErrorFraction * stats.diagonal;
             stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
+            bool cancelled = false;
             const SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
-                points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters);
+                points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters,
+                [&](int round) {
+                    cancelled = cb && !cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
+                    return !cancelled;
+                });
+            if (cancelled) throw ResamplingCancelled();
             stats.splitsForSurfaceBound = surface.splits;
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;

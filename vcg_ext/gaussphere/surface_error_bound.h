@@ -16,6 +16,7 @@
 #define VCG_EXT_GAUSSPHERE_SURFACE_ERROR_BOUND_H
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #include <vcg_ext/surfel_error/surfel_error.h>
@@ -29,7 +30,7 @@ namespace gaussphere {
 
 struct SurfaceErrorBoundResult
 {
-    int splits = 0;         ///< clusters split
+    int splits = 0;         ///< clusters split (with those re-split for their own planes)
     int rounds = 0;         ///< projections of every point
     int pointsAbove = 0;    ///< points still farther than the bound from the blended surface
     double maxDistance = 0; ///< the largest distance of the last projection, model units
@@ -38,7 +39,9 @@ struct SurfaceErrorBoundResult
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
 /// maxDistance of the blended surface of the surfels GenerateSurfels makes from them, measured
 /// as vcg::tri::ComputeSurfelError measures (default SurfelErrorParams), or until no cluster
-/// near a point beyond it can be split, or after maxRounds projections.
+/// near a point beyond it can be split, or after maxRounds projections. `startingRound(r)` is
+/// called before projection round r (from 1); when it returns false the refinement stops there
+/// and the result has rounds = r - 1 (the caller treats it as cancelled).
 /// \pre points and normals (unit) as given to the refiner; spacing as for GenerateSurfels;
 ///      maxDistance > 0; the points' bounding-box diagonal `diagonal` > 0.
 /// \post Deterministic: the result does not depend on the thread count.
@@ -47,13 +50,15 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
                                                         const std::vector<float> &spacing,
                                                         const SurfelGenerationParams &surfelParam,
                                                         double maxDistance, double diagonal, int maxRounds,
-                                                        ClusterRefiner &refiner, Clustering &clusters)
+                                                        ClusterRefiner &refiner, Clustering &clusters,
+                                                        const std::function<bool(int)> &startingRound = nullptr)
 {
     const vcg::tri::SurfelErrorParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
     const int n = int(points.size());
     SurfaceErrorBoundResult result;
     for (;;) {
+        if (startingRound && !startingRound(result.rounds + 1)) break;
         const std::vector<Surfel> surfels = GenerateSurfels(points, normals, spacing, clusters, surfelParam);
         std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
         for (const Surfel &s : surfels) {
@@ -98,7 +103,8 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
         for (int c : marked)
             if (refiner.Size(c) > 1 && refiner.Split(c) >= 0) ++splits;
         if (splits == 0) break;
-        result.splits += splits;
+        // A half's plane is fitted anew and may lie farther from a member than the whole's did.
+        result.splits += splits + refiner.SplitToErrorBound(maxDistance);
     }
     return result;
 }
