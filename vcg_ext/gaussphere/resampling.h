@@ -387,14 +387,13 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         if (param.maxErrorFraction > 0) {
             const double bound = param.maxErrorFraction * stats.diagonal;
             stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
-            bool cancelled = false;
             const SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
                 points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters,
-                [&](int round) {
-                    cancelled = cb && !cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
-                    return !cancelled;
+                [cb](int round, double) {
+                    return cb == nullptr ||
+                           cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
                 });
-            if (cancelled) throw ResamplingCancelled();
+            if (surface.cancelled) throw ResamplingCancelled();
             stats.splitsForSurfaceBound = surface.splits;
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;

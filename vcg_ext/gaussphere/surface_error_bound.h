@@ -34,14 +34,16 @@ struct SurfaceErrorBoundResult
     int rounds = 0;         ///< projections of every point
     int pointsAbove = 0;    ///< points still farther than the bound from the blended surface
     double maxDistance = 0; ///< the largest distance of the last projection, model units
+    bool cancelled = false; ///< progress returned false
 };
 
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
 /// maxDistance of the blended surface of the surfels GenerateSurfels makes from them, measured
 /// as vcg::tri::ComputeSurfelError measures (default SurfelErrorParams), or until no cluster
-/// near a point beyond it can be split, or after maxRounds projections. `startingRound(r)` is
-/// called before projection round r (from 1); when it returns false the refinement stops there
-/// and the result has rounds = r - 1 (the caller treats it as cancelled).
+/// near a point beyond it can be split, or after maxRounds projections. `progress(r, f)` is
+/// called from the calling thread during projection round r (from 1) with the fraction f of
+/// points projected so far; when it returns false the refinement stops at once and the result
+/// has cancelled = true (its figures are then partial).
 /// \pre points and normals (unit) as given to the refiner; spacing as for GenerateSurfels;
 ///      maxDistance > 0; the points' bounding-box diagonal `diagonal` > 0.
 /// \post Deterministic: the result does not depend on the thread count.
@@ -51,14 +53,13 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
                                                         const SurfelGenerationParams &surfelParam,
                                                         double maxDistance, double diagonal, int maxRounds,
                                                         ClusterRefiner &refiner, Clustering &clusters,
-                                                        const std::function<bool(int)> &startingRound = nullptr)
+                                                        const std::function<bool(int, double)> &progress = nullptr)
 {
     const vcg::tri::SurfelErrorParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
     const int n = int(points.size());
     SurfaceErrorBoundResult result;
     for (;;) {
-        if (startingRound && !startingRound(result.rounds + 1)) break;
         const std::vector<Surfel> surfels = GenerateSurfels(points, normals, spacing, clusters, surfelParam);
         std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
         for (const Surfel &s : surfels) {
@@ -72,27 +73,36 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
         ++result.rounds;
         // Clusters to split: those of the surfels blended at a point beyond the bound, and
         // the point's own. Collected per thread, merged in cluster order (deterministic).
+        // Blocks of points only pace the progress reports.
         std::vector<int> marked;
         int above = 0;
         double worst = 0;
-#pragma omp parallel reduction(+ : above) reduction(max : worst)
-        {
-            vcg::tri::SurfelSurface::Scratch scratch;
-            std::vector<int> local;
-#pragma omp for schedule(dynamic, 1024)
-            for (int i = 0; i < n; ++i) {
-                const vcg::Point3d q = vcg::Point3d::Construct(points[i]);
-                const auto projection = surface.Project(q, vcg::Point3d::Construct(normals[i]), metric.maxIterations,
-                                                        tolerance, scratch);
-                const double d = (q - projection.foot).Norm();
-                worst = std::max(worst, d);
-                if (d <= maxDistance) continue;
-                ++above;
-                local.push_back(clusters.label[i]);
-                for (int j = 0; j < scratch.queue.getNofElements(); ++j) local.push_back(scratch.queue.getIndex(j));
+        const int block = 1 << 16;
+        for (int start = 0; start < n; start += block) {
+            if (progress && !progress(result.rounds, double(start) / n)) {
+                result.cancelled = true;
+                return result;
             }
+            const int end = std::min(n, start + block);
+#pragma omp parallel reduction(+ : above) reduction(max : worst)
+            {
+                vcg::tri::SurfelSurface::Scratch scratch;
+                std::vector<int> local;
+#pragma omp for schedule(dynamic, 1024)
+                for (int i = start; i < end; ++i) {
+                    const vcg::Point3d q = vcg::Point3d::Construct(points[i]);
+                    const auto projection = surface.Project(q, vcg::Point3d::Construct(normals[i]), metric.maxIterations,
+                                                            tolerance, scratch);
+                    const double d = (q - projection.foot).Norm();
+                    worst = std::max(worst, d);
+                    if (d <= maxDistance) continue;
+                    ++above;
+                    local.push_back(clusters.label[i]);
+                    for (int j = 0; j < scratch.queue.getNofElements(); ++j) local.push_back(scratch.queue.getIndex(j));
+                }
 #pragma omp critical
-            marked.insert(marked.end(), local.begin(), local.end());
+                marked.insert(marked.end(), local.begin(), local.end());
+            }
         }
         result.pointsAbove = above;
         result.maxDistance = worst;
