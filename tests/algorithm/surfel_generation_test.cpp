@@ -3,6 +3,7 @@
 // orthogonal semi-axes, and an ellipse that holds every member's projection.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <vcg_ext/gaussphere/surfel_generation.h>
@@ -137,6 +138,29 @@ TEST(SurfelGeneration, FlatClusterUsesPositionAxesWithKnownLengths)
     EXPECT_NEAR(std::abs(f[0].majorAxis[0]), std::sqrt(40.0) + 0.75, 1e-4);
     EXPECT_NEAR(std::abs(f[0].minorAxis[1]), std::sqrt(40.0 / 15) + 0.75, 1e-4);
     EXPECT_EQ(f[0].memberCount, 33);
+}
+
+// A curved cluster (a spherical cap of the unit sphere, sagitta 0.134): its centroid lies
+// about half the sagitta inside the sphere; the surfel sits on the sampled surface above it.
+TEST(SurfelGeneration, CurvedClusterSurfelSitsOnTheSurface)
+{
+    const gstest::PointSet sphere = gstest::FibonacciSphere(20000);
+    gstest::PointSet cap;
+    for (int i = 0; i < sphere.Size(); ++i)
+        if (sphere.points[i][2] > std::cos(30 * M_PI / 180)) cap.Add(sphere.points[i], sphere.normals[i]);
+    ASSERT_GT(cap.Size(), 500);
+    const std::vector<int> label(cap.Size(), 0);
+    const std::vector<Surfel> f = Generate(cap, label, Params(10), 0.01f);
+    ExpectValidSurfels(f, cap, label);
+    P3 centroid(0, 0, 0);
+    for (const P3 &p : cap.points) centroid += p;
+    centroid /= float(cap.Size());
+    const double sagitta = 1 - std::cos(30 * M_PI / 180);
+    EXPECT_GT(1 - centroid.Norm(), 0.4 * sagitta); // the bias the position corrects
+    // The weights average over ~0.3 of the radius: about 0.09 of the sagitta remains.
+    EXPECT_LT(std::abs(f[0].position.Norm() - 1), 0.12 * sagitta);
+    EXPECT_NEAR(f[0].position[0], 0, 1e-3);
+    EXPECT_NEAR(f[0].position[1], 0, 1e-3);
 }
 
 // One point: an arbitrary tangent frame and a circle of radius margin x spacing.

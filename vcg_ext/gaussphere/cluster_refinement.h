@@ -10,7 +10,7 @@
 //   members (ties: the larger cluster), until the requested count is reached. Each split
 //   adds exactly one cluster.
 // - SplitToErrorBound: splits every cluster with a member farther than maxDistance from its
-//   surfel plane (centroid, surfel normal) until none is; a one-point cluster lies on its
+//   surfel plane (surfel centre, surfel normal) until none is; a one-point cluster lies on its
 //   own plane, so this ends.
 //
 // Clusters are kept as ranges of one index array, partitioned in place, so a split costs
@@ -139,7 +139,7 @@ private:
         const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
         double worst = 0;
         for (const int *i = Begin(c); i != End(c); ++i)
-            worst = std::max(worst, std::abs((detail::ToEigen(points_[*i]) - f.centroid).dot(f.normal)));
+            worst = std::max(worst, std::abs((detail::ToEigen(points_[*i]) - f.center).dot(f.normal)));
         return worst;
     }
 

@@ -1,6 +1,12 @@
 // Representative surfels (paper, sections 3.5 and 4): one elliptical surfel per cluster.
 //
-// - Position: the centroid of the members.
+// - Position: on the sampled surface above the members' centroid. A curved cluster's
+//   centroid lies inside the surface by about half its sagitta, and every blend of the
+//   surfels inherits that bias; the surfel is moved along its normal by the Gaussian-weighted
+//   mean height of the members around the centroid (width 0.3 of the cluster's radius, so
+//   the nearest members dominate). Measured with bench/ at 5 % of the input: Δ*RMS -4 to
+//   -10 % (bunny 3.32e-3 -> 3.11e-3, igea 9.7e-4 -> 9.2e-4, dragon at 10 %: 4.13e-4 ->
+//   3.85e-4); the plain mean height is zero by definition of the centroid.
 // - Normal: the L2,1-optimal normal, the normalized average of the members' normals
 //   weighted by theta(r) = exp(-r^2 / h^2) of their distance r to the centroid. When all
 //   weights underflow (a cluster much wider than h) the plain average is used.
@@ -68,10 +74,16 @@ inline Eigen::Vector3d AnyTangent(const Eigen::Vector3d &normal)
 
 } // namespace detail
 
+/// Width of the weights that read the surface height above a cluster's centroid, in units
+/// of the cluster's radius (measured: 0.2 lowered Δ*RMS a little more but raised fandisk's
+/// Δ*max at 5 % by a quarter; 0.5 gained half as much).
+constexpr double kSurfaceHeightWidth = 0.3;
+
 /// Centroid, surfel normal and tangent frame of a set of points (a cluster or part of one).
 struct ClusterFrame
 {
     Eigen::Vector3d centroid;
+    Eigen::Vector3d center;  ///< on the surface: centroid moved along the normal (file header)
     Eigen::Vector3d normal;  ///< unit: the Gaussian-weighted average normal
     Eigen::Vector3d u, v;    ///< unit tangents; u: largest normal variation (or positional spread)
 };
@@ -113,6 +125,30 @@ inline ClusterFrame ComputeClusterFrame(const std::vector<vcg::Point3f> &points,
         f.u = detail::TangentPart(ComputePrincipalAxes(positionCov.Covariance()).axis.col(0), f.normal);
     if (f.u.isZero()) f.u = detail::AnyTangent(f.normal);
     f.v = f.normal.cross(f.u);
+
+    double radius2 = 0; // squared tangential distance of the farthest member
+    for (const int *i = begin; i != end; ++i) {
+        const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
+        radius2 = std::max(radius2, d.squaredNorm() - d.dot(f.normal) * d.dot(f.normal));
+    }
+    double weights = 0, height = 0;
+    if (radius2 > 0) {
+        const double invWidth2 = 1.0 / (kSurfaceHeightWidth * kSurfaceHeightWidth * radius2);
+        // Relative to the largest weight, so that the nearest member always counts.
+        double nearest2 = radius2;
+        for (const int *i = begin; i != end; ++i) {
+            const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
+            nearest2 = std::min(nearest2, d.squaredNorm() - d.dot(f.normal) * d.dot(f.normal));
+        }
+        for (const int *i = begin; i != end; ++i) {
+            const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
+            const double h = d.dot(f.normal);
+            const double w = std::exp(-(d.squaredNorm() - h * h - nearest2) * invWidth2);
+            weights += w;
+            height += w * h;
+        }
+    }
+    f.center = weights > 0 ? Eigen::Vector3d(f.centroid + f.normal * (height / weights)) : f.centroid;
     return f;
 }
 
@@ -156,7 +192,7 @@ inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &poin
         const double margin = param.coverageMargin * meanSpacing;
 
         Surfel &s = surfels[c];
-        s.position = detail::ToPoint(centroid);
+        s.position = detail::ToPoint(frame.center);
         s.normal = detail::ToPoint(normal);
         s.majorAxis = detail::ToPoint(u * (scale + margin));
         s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
