@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -84,7 +85,8 @@ constexpr double kSurfaceHeightWidth = 0.3;
 /// raised Δ*max on rocker_arm from 0.0048 to 0.0055).
 constexpr int kSurfaceHeightMinMembers = 6;
 
-/// Centroid, surfel normal and tangent frame of a set of points (a cluster or part of one).
+/// Centroid, surfel centre and normal, and tangent frame of a set of points (a cluster or part
+/// of one).
 struct ClusterFrame
 {
     Eigen::Vector3d centroid;
@@ -131,24 +133,25 @@ inline ClusterFrame ComputeClusterFrame(const std::vector<vcg::Point3f> &points,
     if (f.u.isZero()) f.u = detail::AnyTangent(f.normal);
     f.v = f.normal.cross(f.u);
 
-    double radius2 = 0; // squared tangential distance of the farthest member
+    // Squared tangential distance and height (along the normal) of a member from the centroid.
+    auto offsets = [&](int i, double &tangential2, double &height) {
+        const Eigen::Vector3d d = ToEigen(points[i]) - f.centroid;
+        height = d.dot(f.normal);
+        tangential2 = d.squaredNorm() - height * height;
+    };
+    double radius2 = 0, nearest2 = std::numeric_limits<double>::max(), t2, h;
     for (const int *i = begin; i != end; ++i) {
-        const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
-        radius2 = std::max(radius2, d.squaredNorm() - d.dot(f.normal) * d.dot(f.normal));
+        offsets(*i, t2, h);
+        radius2 = std::max(radius2, t2);
+        nearest2 = std::min(nearest2, t2);
     }
     double weights = 0, height = 0;
     if (radius2 > 0 && end - begin >= kSurfaceHeightMinMembers) {
         const double invWidth2 = 1.0 / (kSurfaceHeightWidth * kSurfaceHeightWidth * radius2);
-        // Relative to the largest weight, so that the nearest member always counts.
-        double nearest2 = radius2;
         for (const int *i = begin; i != end; ++i) {
-            const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
-            nearest2 = std::min(nearest2, d.squaredNorm() - d.dot(f.normal) * d.dot(f.normal));
-        }
-        for (const int *i = begin; i != end; ++i) {
-            const Eigen::Vector3d d = ToEigen(points[*i]) - f.centroid;
-            const double h = d.dot(f.normal);
-            const double w = std::exp(-(d.squaredNorm() - h * h - nearest2) * invWidth2);
+            offsets(*i, t2, h);
+            // Relative to the nearest member's weight, which therefore never underflows.
+            const double w = std::exp(-(t2 - nearest2) * invWidth2);
             weights += w;
             height += w * h;
         }
