@@ -238,10 +238,13 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
         else
             Log(GLLogStream::WARNING,
                 "Gaussian sphere resampling error bound: %d point(s) remain beyond %g of the blended surface "
-                "(largest %g = %.5f x diagonal): the surfels around them are split as far as they go, and the "
-                "blend cannot follow sharp creases or thin parts closer at this sampling",
+                "(largest %g = %.5f x diagonal): %s",
                 s.pointsAboveErrorBound, param.maxErrorFraction * diagonal, s.surfaceErrorMax * diagonal,
-                s.surfaceErrorMax);
+                s.surfaceErrorMax,
+                s.surfaceBoundCapped
+                    ? "the refinement stopped at its cap of projection rounds"
+                    : "the surfels around them are split as far as they go, and the blend cannot follow sharp "
+                      "creases or thin parts closer at this sampling");
     }
     if (param.targetCount > 0 && s.outputCount != param.targetCount)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling: %d surfels instead of the %d requested (%s)",

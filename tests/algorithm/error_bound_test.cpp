@@ -139,6 +139,25 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     EXPECT_EQ(one.stats.surfaceErrorMax, two.stats.surfaceErrorMax);
 }
 
+// With a target count above what the bound needs, the target's splits come first and the
+// bound's figures still describe the final surfels: they equal the metric's.
+TEST(ErrorBound, FiguresDescribeTheFinalSurfelsWithATargetCount)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(6000);
+    const double bound = 0.6 * Measure(s, gstest::Resample(s)).stats.normalizedDistance.max;
+    const int boundCount = int(gstest::Resample(s, Bounded(bound)).surfels.size());
+    ResamplingParams p = Bounded(bound);
+    p.targetCount = boundCount + 300;
+    const ResamplingResult r = gstest::Resample(s, p);
+    gstest::ExpectValidResult(r, s);
+    EXPECT_GE(int(r.surfels.size()), p.targetCount);
+    EXPECT_GT(r.stats.splitsForTarget, 0);
+    const Measured m = Measure(s, r);
+    EXPECT_NEAR(r.stats.surfaceErrorMax, m.stats.normalizedDistance.max, 1e-6 * bound + 1e-9);
+    EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
+    EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
+}
+
 bool StopInSurfaceRounds(int, const char *what) { return std::strstr(what, "error bound on the surface") == nullptr; }
 
 // The projection rounds report progress, and a callback can stop them.

@@ -177,7 +177,7 @@ public:
                 for (int s = first; s < first + size; ++s) {
                     if (copies && isCopy[s - first]) continue;
                     const int i = order_[s];
-                    if (size > maxGridCell_) { // a dense clump: the grid would scan it per point
+                    if (size > maxGridCell_ && k > 0) { // a dense clump: the grid would scan it per point
                         localUnresolved.push_back(i);
                         continue;
                     }
@@ -500,7 +500,9 @@ private:
     /// position with at least k others: their k nearest are the k lowest-index copies, at
     /// distance 0, which no other point precedes in (distance, index) order. Otherwise M copies
     /// of one position (scanners write invalid returns as the origin) would each scan all M.
-    /// Precondition: every copy of a point of ids is in ids. Sets isCopy[t] for each ids[t]
+    /// Precondition: every copy of a point of ids is in ids. (Distinct points closer than
+    /// ~1e-19, whose squared distance underflows to 0, are not copies here: the only case where
+    /// the order differs from brute force's.) Sets isCopy[t] for each ids[t]
     /// answered, calls sink for it, and returns how many were answered. idx, d2: k entries.
     template <class Sink>
     int AnswerCopies(const int *ids, int count, int k, Sink &sink, std::vector<char> &isCopy,

@@ -129,6 +129,7 @@ struct ResamplingStats
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
+    bool surfaceBoundCapped = false; ///< the round cap, not a lack of splittable clusters, left points beyond
     double diagonal = 0;           ///< bounding-box diagonal of the usable points
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
@@ -187,6 +188,10 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 
 } // namespace detail
 
+/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
+/// models of bench/ need at most 5.
+constexpr int kSurfaceBoundRounds = 16;
+
 /// Resamples the oriented point set `mesh` (vertices with normals; faces are ignored).
 /// Preconditions: param.Validate() is empty. Vertices whose normal is zero or not finite,
 /// or whose position is not finite, are skipped and counted in stats.skippedCount.
@@ -194,9 +199,6 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 /// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero.
 /// Throws std::invalid_argument for invalid parameters or fewer than two usable points,
 /// ResamplingCancelled when the callback returns false.
-/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
-/// models of bench/ need at most 5.
-constexpr int kSurfaceBoundRounds = 16;
 
 template <class MeshType>
 ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &param, vcg::CallBackPos *cb = nullptr)
@@ -384,9 +386,13 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
         detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(points, normals, clusters, invH2);
+        const double bound = param.maxErrorFraction * stats.diagonal;
+        if (param.maxErrorFraction > 0) stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
+        if (param.targetCount > 0) stats.splitsForTarget = refiner.SplitToCount(param.targetCount);
         if (param.maxErrorFraction > 0) {
-            const double bound = param.maxErrorFraction * stats.diagonal;
-            stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
+            // Last, so that its figures describe the final clusters; the target's splits may
+            // have moved a half's plane away from a member: the own planes are checked again.
+            if (stats.splitsForTarget > 0) stats.splitsForErrorBound += refiner.SplitToErrorBound(bound);
             const SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
                 points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters,
                 [cb](int round, double) {
@@ -398,9 +404,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;
             stats.surfaceErrorMax = stats.diagonal > 0 ? surface.maxDistance / stats.diagonal : 0.0;
+            stats.surfaceBoundCapped = surface.pointsAbove > 0 && surface.rounds >= kSurfaceBoundRounds;
         }
-        if (param.targetCount > 0)
-            stats.splitsForTarget = refiner.SplitToCount(param.targetCount);
     }
     if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0)
         stats.mergesForTarget = MergeToCount(points, normals, graph, weightWidth, param.targetCount, clusters);

@@ -71,8 +71,9 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
         const vcg::tri::SurfelSurface surface =
             vcg::tri::MakeEllipseSurfelSurface(centers, surfelNormals, major, minor, metric);
         ++result.rounds;
-        // Clusters to split: those of the surfels blended at a point beyond the bound, and
-        // the point's own. Collected per thread, merged in cluster order (deterministic).
+        // Clusters to split: those of the surfels nearest to the projection of a point beyond
+        // the bound (the ones the blend draws from, and a few facing away), and the point's own.
+        // Collected per thread, merged in cluster order (deterministic).
         // Blocks of points only pace the progress reports.
         std::vector<int> marked;
         int above = 0;
