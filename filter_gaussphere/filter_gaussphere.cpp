@@ -241,7 +241,7 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
                 "(largest %g = %.5f x diagonal): %s",
                 s.pointsAboveErrorBound, param.maxErrorFraction * diagonal, s.surfaceErrorMax * diagonal,
                 s.surfaceErrorMax,
-                s.surfaceBoundCapped
+                s.SurfaceBoundCapped()
                     ? "the refinement stopped at its cap of projection rounds"
                     : "the surfels around them are split as far as they go, and the blend cannot follow sharp "
                       "creases or thin parts closer at this sampling");

@@ -113,6 +113,10 @@ struct ResamplingParams
     }
 };
 
+/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
+/// models of bench/ need at most 5.
+constexpr int kSurfaceBoundRounds = 16;
+
 struct ResamplingStats
 {
     int inputCount = 0;            ///< vertices examined (deleted ones excluded)
@@ -129,13 +133,14 @@ struct ResamplingStats
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
-    bool surfaceBoundCapped = false; ///< the round cap, not a lack of splittable clusters, left points beyond
     double diagonal = 0;           ///< bounding-box diagonal of the usable points
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
     double secondsNeighbors = 0, secondsPropagation = 0, secondsNormalization = 0, secondsRefinement = 0,
            secondsSurfels = 0;
+    /// The round cap, not a lack of clusters left to split, left points beyond the bound.
+    bool SurfaceBoundCapped() const { return pointsAboveErrorBound > 0 && surfaceBoundRounds >= kSurfaceBoundRounds; }
     double TotalSeconds() const
     {
         return secondsNeighbors + secondsPropagation + secondsNormalization + secondsRefinement + secondsSurfels;
@@ -188,10 +193,6 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 
 } // namespace detail
 
-/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
-/// models of bench/ need at most 5.
-constexpr int kSurfaceBoundRounds = 16;
-
 /// Resamples the oriented point set `mesh` (vertices with normals; faces are ignored).
 /// Preconditions: param.Validate() is empty. Vertices whose normal is zero or not finite,
 /// or whose position is not finite, are skipped and counted in stats.skippedCount.
@@ -199,7 +200,6 @@ constexpr int kSurfaceBoundRounds = 16;
 /// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero.
 /// Throws std::invalid_argument for invalid parameters or fewer than two usable points,
 /// ResamplingCancelled when the callback returns false.
-
 template <class MeshType>
 ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &param, vcg::CallBackPos *cb = nullptr)
 {
@@ -378,7 +378,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     stats.iterations = chosen.iterations;
     stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
 
-    // Refinements beyond the paper: error bound, then exact size.
+    // Refinements beyond the paper: own-plane error bound, exact size, then the error bound on
+    // the blended surface, whose last round already made the final surfels.
     const double invH2 = 1.0 / (weightWidth * weightWidth);
     SurfelGenerationParams surfelParam;
     surfelParam.weightWidth = weightWidth;
@@ -393,7 +394,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             // Last, so that its figures describe the final clusters; the target's splits may
             // have moved a half's plane away from a member: the own planes are checked again.
             if (stats.splitsForTarget > 0) stats.splitsForErrorBound += refiner.SplitToErrorBound(bound);
-            const SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
+            SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
                 points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters,
                 [cb](int round, double) {
                     return cb == nullptr ||
@@ -404,7 +405,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;
             stats.surfaceErrorMax = stats.diagonal > 0 ? surface.maxDistance / stats.diagonal : 0.0;
-            stats.surfaceBoundCapped = surface.pointsAbove > 0 && surface.rounds >= kSurfaceBoundRounds;
+            result.surfels = std::move(surface.surfels);
         }
     }
     if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0)
@@ -413,7 +414,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
-    result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
+    if (result.surfels.empty()) result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
     double sumSquares = 0;
     for (int i = 0; i < n; ++i) {
         result.representative[source[i]] = clusters.label[i];

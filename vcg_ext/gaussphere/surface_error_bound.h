@@ -35,6 +35,7 @@ struct SurfaceErrorBoundResult
     int pointsAbove = 0;    ///< points still farther than the bound from the blended surface
     double maxDistance = 0; ///< the largest distance of the last projection, model units
     bool cancelled = false; ///< progress returned false
+    std::vector<Surfel> surfels; ///< GenerateSurfels of the final clusters (unless cancelled)
 };
 
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
@@ -60,9 +61,9 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
     const int n = int(points.size());
     SurfaceErrorBoundResult result;
     for (;;) {
-        const std::vector<Surfel> surfels = GenerateSurfels(points, normals, spacing, clusters, surfelParam);
+        result.surfels = GenerateSurfels(points, normals, spacing, clusters, surfelParam);
         std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
-        for (const Surfel &s : surfels) {
+        for (const Surfel &s : result.surfels) {
             centers.push_back(s.position);
             surfelNormals.push_back(s.normal);
             major.push_back(s.majorAxis);
