@@ -112,10 +112,11 @@ inline vcg::gaussphere::NeighborGraph MakeGraph(const std::vector<std::vector<in
     for (const auto &a : adj) g.stride = std::max<int>(g.stride, int(a.size()));
     g.adjacency.assign(adj.size() * g.stride, -1);
     g.count.assign(adj.size(), 0);
+    g.found.assign(adj.size(), 0);
     g.spacing.assign(adj.size(), spacing);
     for (size_t i = 0; i < adj.size(); ++i) {
         for (size_t t = 0; t < adj[i].size(); ++t) g.adjacency[i * g.stride + t] = adj[i][t];
-        g.count[i] = std::uint8_t(adj[i].size());
+        g.count[i] = g.found[i] = std::uint8_t(adj[i].size());
     }
     return g;
 }

@@ -1,0 +1,112 @@
+// Exact output size (cluster_refinement.h): splitting the worst clusters, merging the
+// cheapest neighbours.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include <vcg_ext/gaussphere/cluster_refinement.h>
+
+#include "test_support.h"
+
+using namespace vcg::gaussphere;
+using namespace gstest;
+
+namespace {
+
+/// Two flat terraces, both facing +z: x = 0..5 at z = 0 and x = 5.3..10.3 at z = step, ten
+/// rows each, linked by 4-neighbour edges within a terrace and across the gap. Tag: terrace.
+struct Terraces
+{
+    PointSet set;
+    NeighborGraph graph;
+};
+
+Terraces MakeTerraces(float step)
+{
+    Terraces t;
+    const int columns = 6, rows = 10;
+    auto id = [&](int terrace, int x, int y) { return (terrace * columns + x) * rows + y; };
+    for (int terrace = 0; terrace < 2; ++terrace)
+        for (int x = 0; x < columns; ++x)
+            for (int y = 0; y < rows; ++y)
+                t.set.Add(P3(terrace * (columns - 0.7f) + x, float(y), terrace * step), P3(0, 0, 1), terrace);
+    std::vector<std::vector<int>> adj(t.set.Size());
+    auto link = [&](int a, int b) { adj[a].push_back(b); adj[b].push_back(a); };
+    for (int terrace = 0; terrace < 2; ++terrace)
+        for (int x = 0; x < columns; ++x)
+            for (int y = 0; y < rows; ++y) {
+                if (x + 1 < columns) link(id(terrace, x, y), id(terrace, x + 1, y));
+                if (y + 1 < rows) link(id(terrace, x, y), id(terrace, x, y + 1));
+            }
+    for (int y = 0; y < rows; ++y) link(id(0, columns - 1, y), id(1, 0, y)); // across the gap
+    t.graph = MakeGraph(adj);
+    return t;
+}
+
+Clustering Singletons(int n)
+{
+    Clustering c;
+    for (int i = 0; i < n; ++i) c.label.push_back(i);
+    c.clusterCount = n;
+    return c;
+}
+
+} // namespace
+
+// The points across the gap are nearer to each other (0.3 apart in x) than to their own
+// terrace's neighbours (1 apart): by position alone they would merge first. The height a
+// merge adds to the surfel's plane keeps every cluster on one terrace.
+TEST(MergeToCount, KeepsClustersOnOneTerraceOfAStep)
+{
+    const Terraces t = MakeTerraces(0.5f);
+    Clustering c = Singletons(t.set.Size());
+    const int target = t.set.Size() / 4;
+    const int merges = MergeToCount(t.set.points, t.set.normals, t.graph, 1.0, target, c);
+    EXPECT_EQ(merges, t.set.Size() - target);
+    ASSERT_EQ(c.clusterCount, target);
+    std::vector<std::set<int>> terraces(c.clusterCount);
+    for (int i = 0; i < t.set.Size(); ++i) terraces[c.label[i]].insert(t.set.tag[i]);
+    for (int k = 0; k < c.clusterCount; ++k) EXPECT_EQ(terraces[k].size(), 1u) << "cluster " << k;
+}
+
+// Without a step the gap is just the nearest pair: the merge across it is the cheapest.
+TEST(MergeToCount, MergesAcrossAGapWithoutAStep)
+{
+    const Terraces t = MakeTerraces(0.f);
+    Clustering c = Singletons(t.set.Size());
+    MergeToCount(t.set.points, t.set.normals, t.graph, 1.0, t.set.Size() - 1, c);
+    int across = 0;
+    std::vector<std::set<int>> terraces(c.clusterCount);
+    for (int i = 0; i < t.set.Size(); ++i) terraces[c.label[i]].insert(t.set.tag[i]);
+    for (const auto &s : terraces) across += int(s.size() == 2);
+    EXPECT_EQ(across, 1);
+}
+
+// Merging stops when no two clusters are linked, short of the target.
+TEST(MergeToCount, StopsWhenNoClustersAreLinked)
+{
+    PointSet s;
+    for (int i = 0; i < 4; ++i) s.Add(P3(float(i), 0, 0), P3(0, 0, 1));
+    const NeighborGraph g = MakeGraph({{1}, {0}, {3}, {2}});
+    Clustering c = Singletons(4);
+    EXPECT_EQ(MergeToCount(s.points, s.normals, g, 1.0, 1, c), 2);
+    EXPECT_EQ(c.clusterCount, 2);
+    EXPECT_EQ(c.label[0], c.label[1]);
+    EXPECT_EQ(c.label[2], c.label[3]);
+}
+
+// Splitting reaches the requested count exactly, worst normal error first: on a cube's
+// surface held as one cluster, the first split separates faces.
+TEST(SplitToCount, ReachesTheCountExactly)
+{
+    const PointSet cube = CubeSurface(8, false);
+    Clustering c;
+    c.label.assign(cube.Size(), 0);
+    c.clusterCount = 1;
+    ClusterRefiner refiner(cube.points, cube.normals, c, 1.0);
+    EXPECT_EQ(refiner.SplitToCount(37), 36);
+    EXPECT_EQ(c.clusterCount, 37);
+    EXPECT_EQ(refiner.Count(), 37);
+    std::set<int> labels(c.label.begin(), c.label.end());
+    EXPECT_EQ(int(labels.size()), 37);
+}
