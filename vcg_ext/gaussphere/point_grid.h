@@ -43,6 +43,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
+#include "flat_vector.h"
 #include "point_kdtree.h"
 
 namespace vcg {
@@ -89,7 +90,7 @@ public:
         const int n = int(points.size());
         if (n == 0) return;
         box_ = RobustBox(points);
-        std::vector<std::pair<std::uint64_t, int>> keyed;
+        FlatVector<std::pair<std::uint64_t, int>> keyed;
         keyed.reserve(n);
         for (int i = 0; i < n; ++i) {
             if (box_.IsIn(points[i])) keyed.push_back({0, i});
@@ -302,7 +303,7 @@ private:
     }
 
     /// `inside`: the points in the grid box (second members).
-    double ChooseCellSize(double pointsPerCell, const std::vector<std::pair<std::uint64_t, int>> &inside) const
+    double ChooseCellSize(double pointsPerCell, const FlatVector<std::pair<std::uint64_t, int>> &inside) const
     {
         const double extent = std::max({double(box_.DimX()), double(box_.DimY()), double(box_.DimZ())});
         if (!(extent > 0)) return 1.0;

@@ -57,6 +57,7 @@
 #include "cluster_refinement.h"
 #include "clustering.h"
 #include "crease_points.h"
+#include "flat_vector.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
 #include "point_grid.h"
@@ -176,14 +177,15 @@ private:
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-/// values[i] = old values[order[i]].
+/// values[i] = old values[order[i]]. Through a FlatVector and back, so that only the scratch
+/// buffer is fresh memory (huge pages; `values` was touched already).
 template <class T>
 void Permute(const std::vector<int> &order, std::vector<T> &values)
 {
-    std::vector<T> permuted(values.size());
+    FlatVector<T> permuted(values.size());
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < int(order.size()); ++i) permuted[i] = values[order[i]];
-    values.swap(permuted);
+    std::copy(permuted.begin(), permuted.end(), values.begin());
 }
 
 inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
