@@ -308,6 +308,7 @@ const LedgerRow kLedger[] = {
     {"points copy (Point3f)", "resampling.h", 12, 0, "RNCS"},
     {"normals copy (Point3f)", "resampling.h", 12, 0, "RNCS"},
     {"source index (int)", "resampling.h", 4, 0, "RNCS"},
+    {"usable flag (char) + offset (int), transient", "resampling.h", 5, 0, "r"},
     {"grid sort keys (uint64,int): freed before the graph exists", "point_grid.h", 16, 0, "-"},
     {"grid order_ (int)", "point_grid.h", 4, 0, "NCS"},
     {"grid cell start/key/hash (~8 points per cell)", "point_grid.h", 4, 0, "NCS"},

@@ -188,6 +188,47 @@ void Permute(const std::vector<int> &order, std::vector<T> &values)
     std::copy(permuted.begin(), permuted.end(), values.begin());
 }
 
+/// The usable vertices of `mesh` (live, finite position, finite non-zero normal) as flat
+/// float arrays with unit normals; source[i] = the vertex of point i. Two parallel passes:
+/// which vertices are usable, then the copies at their prefix offsets (the flags and offsets
+/// are freed on return, before the neighbour search). Returns the number of deleted vertices.
+template <class MeshType>
+int ReadUsablePoints(const MeshType &mesh, std::vector<vcg::Point3f> &points, std::vector<vcg::Point3f> &normals,
+                     std::vector<int> &source)
+{
+    const int vertexCount = int(mesh.vert.size());
+    std::vector<char> usable(vertexCount, 0);
+    int deleted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : deleted)
+    for (int vi = 0; vi < vertexCount; ++vi) {
+        const auto &v = mesh.vert[vi];
+        if (v.IsD()) { ++deleted; continue; }
+        const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
+        const double len = vcg::Point3d::Construct(v.cN()).Norm(); // double: very long normals stay finite
+        usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&
+                     len > 1e-30;
+    }
+    std::vector<int> slot(vertexCount);
+    int kept = 0;
+    for (int vi = 0; vi < vertexCount; ++vi) {
+        slot[vi] = kept;
+        kept += usable[vi];
+    }
+    points.resize(kept);
+    normals.resize(kept);
+    source.resize(kept);
+#pragma omp parallel for schedule(static)
+    for (int vi = 0; vi < vertexCount; ++vi) {
+        if (!usable[vi]) continue;
+        const auto &v = mesh.vert[vi];
+        const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
+        points[slot[vi]] = vcg::Point3f::Construct(v.cP());
+        normals[slot[vi]] = vcg::Point3f::Construct(nrm / nrm.Norm());
+        source[slot[vi]] = vi;
+    }
+    return deleted;
+}
+
 inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 {
     if (cb && !cb(percent, what)) throw ResamplingCancelled();
@@ -212,43 +253,13 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::StageTimer timer;
     detail::Report(cb, 0, "Gaussian sphere resampling: reading points");
 
-    // Usable points, as flat float arrays; `source` maps them back to vertex indices. Two
-    // parallel passes: which vertices are usable, then the copies at their prefix offsets.
+    // Usable points, as flat float arrays; `source` maps them back to vertex indices.
     std::vector<vcg::Point3f> points, normals;
     std::vector<int> source;
     result.representative.assign(mesh.vert.size(), -1);
-    const int vertexCount = int(mesh.vert.size());
-    std::vector<char> usable(vertexCount, 0);
-    int deleted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : deleted)
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        const auto &v = mesh.vert[vi];
-        if (v.IsD()) { ++deleted; continue; }
-        const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
-        const double len = vcg::Point3d::Construct(v.cN()).Norm(); // double: very long normals stay finite
-        usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&
-                     len > 1e-30;
-    }
-    std::vector<int> slot(vertexCount);
-    int kept = 0;
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        slot[vi] = kept;
-        kept += usable[vi];
-    }
-    stats.inputCount = vertexCount - deleted;
-    stats.skippedCount = stats.inputCount - kept;
-    points.resize(kept);
-    normals.resize(kept);
-    source.resize(kept);
-#pragma omp parallel for schedule(static)
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        if (!usable[vi]) continue;
-        const auto &v = mesh.vert[vi];
-        const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
-        points[slot[vi]] = vcg::Point3f::Construct(v.cP());
-        normals[slot[vi]] = vcg::Point3f::Construct(nrm / nrm.Norm());
-        source[slot[vi]] = vi;
-    }
+    const int deleted = detail::ReadUsablePoints(mesh, points, normals, source);
+    stats.inputCount = int(mesh.vert.size()) - deleted;
+    stats.skippedCount = stats.inputCount - int(points.size());
     const int n = int(points.size());
     if (n < 2)
         throw std::invalid_argument("the layer has " + std::to_string(n) +
