@@ -169,8 +169,9 @@ inline int MergeToCount(const std::vector<vcg::Point3f> &points, const std::vect
 {
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
-    // Sums that give a merged cluster's errors in O(1). Positions are taken relative to one
-    // point so that the second moments do not lose the spread to cancellation.
+    // Sums that give a merged cluster's errors in O(1). Positions are taken relative to the
+    // centroid of all points, which keeps the second moments of a model far from the origin
+    // from losing the clusters' spread to cancellation.
     struct Cluster
     {
         double size = 0;
@@ -186,18 +187,22 @@ inline int MergeToCount(const std::vector<vcg::Point3f> &points, const std::vect
             moment += o.moment;
         }
         /// Sum of the members' squared distances to the plane through the centroid along the
-        /// mean normal.
+        /// mean normal; with normals that cancel out (no plane), the whole spread.
         double PlaneError() const
         {
-            const double length = normalSum.norm();
-            if (!(length > 0)) return 0.0;
-            const Eigen::Vector3d n = normalSum / length;
             const Eigen::Matrix3d scatter = moment - positionSum * positionSum.transpose() / size;
+            const double length = normalSum.norm();
+            if (!(length > 1e-6 * size)) return std::max(0.0, scatter.trace());
+            const Eigen::Vector3d n = normalSum / length;
             return std::max(0.0, n.dot(scatter * n));
         }
     };
     std::vector<Cluster> c(count);
-    const Eigen::Vector3d origin = detail::ToEigen(points[0]);
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    double clustered = 0;
+    for (size_t i = 0; i < clusters.label.size(); ++i)
+        if (clusters.label[i] >= 0) { origin += detail::ToEigen(points[i]); ++clustered; }
+    origin /= clustered;
     for (size_t i = 0; i < clusters.label.size(); ++i) {
         const int l = clusters.label[i];
         if (l < 0) continue;
@@ -234,6 +239,9 @@ inline int MergeToCount(const std::vector<vcg::Point3f> &points, const std::vect
         Cluster merged = A;
         merged.Add(B);
         const double ward = A.size * B.size / (A.size + B.size);
+        // May be negative: each part's error is taken along its own mean normal, its surfel's,
+        // and a merged normal that fits both parts better lowers the surfels' height error.
+        // Clamping it at 0 was measured: Delta*max lower than the hierarchy's on 2 models fewer.
         const double addedHeight = merged.PlaneError() - A.PlaneError() - B.PlaneError();
         return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
                        kMergeSpreadWeight * (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2) +

@@ -5,8 +5,9 @@
 //   system leaves that choice to programs (/sys/kernel/mm/transparent_hugepage/enabled =
 //   madvise, Debian's default): one page fault then maps 2 MB instead of 4 KB. First-touch
 //   page faults are a large part of the resampler's time on virtual machines (measured here:
-//   11 us per 4 KB page, 0.25 us per 4 KB with huge pages). Only whole 2 MB pages inside the
-//   buffer are advised, so no memory beyond the request is ever touched.
+//   11 us per 4 KB page, 0.25 us per 4 KB with huge pages). Such a buffer is a mapping of its
+//   own, 2 MB-aligned, whose whole 2 MB pages are advised: nothing beyond the request is touched,
+//   and the advice goes with the buffer. Elsewhere than on Linux, plain std::allocator.
 #ifndef VCG_EXT_GAUSSPHERE_FLAT_VECTOR_H
 #define VCG_EXT_GAUSSPHERE_FLAT_VECTOR_H
 
@@ -28,17 +29,35 @@ namespace gaussphere {
 namespace detail {
 
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
 constexpr std::size_t kHugePageMinBytes = kHugePage; // smaller ones hold no whole huge page
 
+/// Bytes of the mapping that backs a large buffer: whole 4 KB pages.
+inline std::size_t MappedBytes(std::size_t bytes) { return (bytes + 4095) / 4096 * 4096; }
+
+/// A private mapping aligned to 2 MB, its whole 2 MB pages advised as huge pages. Its own
+/// mapping, not the heap's: the advice ends with the buffer (munmap).
 inline void *AllocateLarge(std::size_t bytes)
 {
-    void *p = nullptr;
-    if (posix_memalign(&p, kHugePage, bytes) != 0) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const std::size_t size = MappedBytes(bytes);
+    void *raw = mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kHugePage - 1) / kHugePage * kHugePage;
+    if (aligned > start) munmap(raw, aligned - start);
+    const std::size_t tail = start + size + kHugePage - (aligned + size);
+    if (tail > 0) munmap(reinterpret_cast<void *>(aligned + size), tail);
+    void *p = reinterpret_cast<void *>(aligned);
     madvise(p, bytes / kHugePage * kHugePage, MADV_HUGEPAGE); // advice only: failure is harmless
-#endif
     return p;
 }
+inline void FreeLarge(void *p, std::size_t bytes) { munmap(p, MappedBytes(bytes)); }
+#else
+constexpr std::size_t kHugePageMinBytes = ~std::size_t(0); // no huge pages to ask for
+inline void *AllocateLarge(std::size_t) { throw std::bad_alloc(); }
+inline void FreeLarge(void *, std::size_t) {}
+#endif
 
 } // namespace detail
 
@@ -51,13 +70,14 @@ struct DefaultInitAllocator : std::allocator<T>
 
     T *allocate(std::size_t n)
     {
+        if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
         if (n * sizeof(T) < detail::kHugePageMinBytes) return std::allocator<T>::allocate(n);
         return static_cast<T *>(detail::AllocateLarge(n * sizeof(T)));
     }
     void deallocate(T *p, std::size_t n) noexcept
     {
         if (n * sizeof(T) < detail::kHugePageMinBytes) std::allocator<T>::deallocate(p, n);
-        else std::free(p);
+        else detail::FreeLarge(p, n * sizeof(T));
     }
 
     template <class U> void construct(U *p) noexcept(noexcept(U())) { ::new (static_cast<void *>(p)) U; }

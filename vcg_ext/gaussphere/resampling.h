@@ -44,6 +44,7 @@
 #define VCG_EXT_GAUSSPHERE_RESAMPLING_H
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -182,6 +183,7 @@ private:
 template <class T>
 void Permute(const std::vector<int> &order, std::vector<T> &values)
 {
+    assert(order.size() == values.size());
     FlatVector<T> permuted(values.size());
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < int(order.size()); ++i) permuted[i] = values[order[i]];
