@@ -175,10 +175,11 @@ public:
                 const int first = cellStart_[c], size = cellStart_[c + 1] - first;
                 const bool copies = size > kCrowdedCell && k > 0 &&
                                     AnswerCopies(&order_[first], size, k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0;
+                const bool denseClump = size > maxGridCell_ && k > 0; // the grid would scan it per point
                 for (int s = first; s < first + size; ++s) {
                     if (copies && isCopy[s - first]) continue;
                     const int i = order_[s];
-                    if (size > maxGridCell_ && k > 0) { // a dense clump: the grid would scan it per point
+                    if (denseClump) {
                         localUnresolved.push_back(i);
                         continue;
                     }

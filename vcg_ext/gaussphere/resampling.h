@@ -269,8 +269,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     vcg::Box3f box;
     for (const auto &p : points) box.Add(p);
-    const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * box.Diag();
     stats.diagonal = box.Diag();
+    const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * stats.diagonal;
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");

@@ -380,6 +380,10 @@ inline bool EllipseOf(const SurfelErrorAttributes& a, std::size_t vertex, const 
     return true;
 }
 
+/// Floor on the surfel sizes for centers spanning `box`, so that duplicates or degenerate
+/// ellipses keep finite weights; any positive value does when all centers coincide.
+inline double SmallestSurfelSize(const Box3d& box) { return box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0; }
+
 /// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
 inline void SetWidths(double major, double minor, double sigma, double smallestSize, BlendingSurfel& s)
 {
@@ -437,9 +441,7 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
             "non-zero normal (no normals?)");
 
     CenterTree tree(centers);
-    // Floor on the sizes, so duplicates or degenerate ellipses keep finite weights; any positive
-    // value does when all centers coincide.
-    const double smallestSize = box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0;
+    const double smallestSize = SmallestSurfelSize(box);
     const bool hasRadius = HasPerVertexRadius(simplified);
     const double sigma = params.widthFactor;
     const long surfelCount = long(surfels.size());
@@ -492,7 +494,7 @@ inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& center
         centersD[i] = Point3d::Construct(centers[i]);
         box.Add(centersD[i]);
     }
-    const double smallestSize = box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0;
+    const double smallestSize = SmallestSurfelSize(box);
     SurfelErrorAttributes axes;
     axes.ellipseMajorAxes = &majorAxes;
     axes.ellipseMinorAxes = &minorAxes;
