@@ -7,6 +7,7 @@
 #include <cctype>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "pipeline_support.h"
 
@@ -238,6 +239,21 @@ TEST(ResamplingInputs, CallbackReturningFalseCancels)
     const ResamplingResult r = ResamplePointSet(m, ResamplingParams(), CancelAfterSomeCalls);
     EXPECT_EQ(gLastPercent, 100);
     gstest::ExpectValidResult(r, s);
+}
+
+// Cluster normalization runs for seconds on tens of millions of points: it reports its
+// rounds, and a cancel there stops the run.
+bool CancelInNormalization(int, const char *what)
+{
+    return std::string(what).find("cluster normalization") == std::string::npos;
+}
+
+TEST(ResamplingInputs, CancelDuringClusterNormalization)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(2000);
+    OrientedPointMesh m;
+    gstest::ToMesh(s, m);
+    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelInNormalization), ResamplingCancelled);
 }
 
 } // namespace

@@ -291,6 +291,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     });
     if (graph.Size() != n) throw ResamplingCancelled();
     stats.secondsNeighbors = timer.Lap();
+    detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
 
     // 2-3. Naive sampling and optimized sampling at one level.
     ClusterNormalizationParams normalization;
@@ -339,11 +340,18 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         r.naiveCount = c.clusterCount;
         stats.secondsPropagation += timer.Lap();
 
+        // A report after each step: at 20 M points a round takes seconds, and a MeshLab user
+        // must be able to see it move and to cancel it.
+        const char *normalizing = "Gaussian sphere resampling: cluster normalization";
+        detail::Report(cb, 56, normalizing);
         const double settled = param.convergenceFraction * n;
         for (int round = 0; round < param.maxIterations; ++round) {
             const int before = c.clusterCount;
+            const int percent = std::min(74, 57 + 4 * round);
             SplitElongatedClusters(points, normalization, c);
+            detail::Report(cb, percent, normalizing);
             RejoinSingletons(normals, graph, inscribedRadius, c);
+            detail::Report(cb, percent + 1, normalizing);
             c.Compact();
             ++r.iterations;
             if (std::abs(c.clusterCount - before) < settled) break;
@@ -353,7 +361,6 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         return r;
     };
 
-    detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
     LevelResult chosen = clusterAtLevel(param.subdivisionLevel);
     if (param.targetCount > 0) {
         // The count grows with the level: find the finest level in [2, 256] whose count
