@@ -19,7 +19,7 @@ server=(xvfb-run -a -s "-screen 0 1280x1024x24" "$build/stage/bin/meshlabserver"
 "${server[@]}" -i "$input" -s "$script" -o "$out/${name}_resampled.surfel" > "$out/${name}_resampled.log" 2>&1 ||
   { echo "meshlabserver failed, see $out/${name}_resampled.log" >&2; exit 1; }
 "${server[@]}" -i "$out/${name}_resampled.surfel" -o "$out/${name}_resampled.ply" -m vn vr >/dev/null 2>&1
-sed -n "s/^LOG: [0-9] //p" "$out/${name}_resampled.log"
+sed -n "s/.*LOG: [0-9] //p" "$out/${name}_resampled.log"
 echo "Results:"
 echo "  $out/${name}_resampled.surfel  (surfels with ellipse axes; open in MeshLab with the plugins installed)"
 echo "  $out/${name}_resampled.ply     (positions, normals, radii)"
