@@ -109,9 +109,10 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "Optional bound on the distance from every input point to the surface the surfels define, as a "
         "fraction of the bounding box diagonal, e.g. 0.002 (0 = off). Clusters are split until every point "
         "lies within it of its own surfel's plane, then of the blended surface of all surfels (as the Surfel "
-        "Approximation Error filter measures it). Near sharp creases that blend rounds the edge by a fraction "
-        "of the sample spacing even when every surfel is one point: points it cannot bring within the bound "
-        "are counted in the log. With a target count, the bound wins when both cannot hold."));
+        "Approximation Error filter measures it). Near sharp creases that blend rounds the edge even when "
+        "every surfel is one point: there the one-point surfels are narrowed (down to 1/8 of their size) "
+        "until the blend follows them, which may leave gaps along creases in splat renderings. Points still "
+        "beyond the bound are counted in the log. With a target count, the bound wins when both cannot hold."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
 }
@@ -226,9 +227,10 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
         s.secondsPropagation, s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
         Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
-            "for the target count, %d + %d split(s) for the error bound (own planes + blended surface)",
+            "for the target count, %d + %d split(s) for the error bound (own planes + blended surface), "
+            "%d narrowing(s) of one-point surfels",
             s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound,
-            s.splitsForSurfaceBound);
+            s.splitsForSurfaceBound, s.narrowingsForSurfaceBound);
     if (param.maxErrorFraction > 0) {
         const double diagonal = s.diagonal;
         if (s.pointsAboveErrorBound == 0)
@@ -243,8 +245,8 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
                 s.surfaceErrorMax,
                 s.SurfaceBoundCapped()
                     ? "the refinement stopped at its cap of projection rounds"
-                    : "the surfels around them are split as far as they go, and the blend cannot follow sharp "
-                      "creases or thin parts closer at this sampling");
+                    : "the surfels around them are split and narrowed as far as they go, and the blend cannot "
+                      "follow sharp creases or thin parts closer at this sampling");
     }
     if (param.targetCount > 0 && s.outputCount != param.targetCount)
         Log(GLLogStream::WARNING, "Gaussian sphere resampling: %d surfels instead of the %d requested (%s)",

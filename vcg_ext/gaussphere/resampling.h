@@ -132,6 +132,7 @@ struct ResamplingStats
     int mergesForTarget = 0;       ///< cluster pairs merged to reach a targetCount below level 2's count
     int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction on the own surfel planes
     int splitsForSurfaceBound = 0; ///< ... and then on the blended surface (surface_error_bound.h)
+    int narrowingsForSurfaceBound = 0; ///< halvings of one-point surfels' axes for it (same file)
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
@@ -424,6 +425,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
                 });
             if (surface.cancelled) throw ResamplingCancelled();
             stats.splitsForSurfaceBound = surface.splits;
+            stats.narrowingsForSurfaceBound = surface.narrowings;
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;
             stats.surfaceErrorMax = stats.diagonal > 0 ? surface.maxDistance / stats.diagonal : 0.0;

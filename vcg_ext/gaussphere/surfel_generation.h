@@ -53,6 +53,9 @@ struct SurfelGenerationParams
     double weightWidth = 0.01;     ///< h of theta(r) = exp(-r^2/h^2), in model units
     double coverageMargin = 0.75;  ///< semi-axes grow by this times the mean local spacing
     double minAspect = 0.1;        ///< lower bound of minor/major, avoids needle ellipses
+    /// Per cluster: a factor on both semi-axes (SplitToSurfaceErrorBound narrows the surfels
+    /// that pull the blend off a point no split can help); null, or clusters beyond its size: 1.
+    const std::vector<float> *axisScale = nullptr;
 };
 
 namespace detail {
@@ -198,12 +201,14 @@ inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &poin
         }
         scale = std::sqrt(scale);
         const double margin = param.coverageMargin * meanSpacing;
+        const double narrowing =
+            param.axisScale && c < int(param.axisScale->size()) ? double((*param.axisScale)[c]) : 1.0;
 
         Surfel &s = surfels[c];
         s.position = detail::ToPoint(frame.center);
         s.normal = detail::ToPoint(normal);
-        s.majorAxis = detail::ToPoint(u * (scale + margin));
-        s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
+        s.majorAxis = detail::ToPoint(u * (narrowing * (scale + margin)));
+        s.minorAxis = detail::ToPoint(v * (narrowing * (aspect * scale + margin)));
         s.memberCount = size;
     }
     return surfels;
