@@ -309,14 +309,14 @@ const LedgerRow kLedger[] = {
     {"normals copy (Point3f)", "resampling.h", 12, 0, "RNCS"},
     {"source index (int)", "resampling.h", 4, 0, "RNCS"},
     {"usable flag (char) + offset (int), transient", "resampling.h", 5, 0, "r"},
-    {"grid sort keys (uint64,int): freed before the graph exists", "point_grid.h", 16, 0, "-"},
+    {"grid sort keys (uint64,int) + radix scratch: freed before the graph exists", "point_grid.h", 32, 0, "-"},
     {"grid order_ (int)", "point_grid.h", 4, 0, "NCS"},
     {"grid cell start/key/hash (~8 points per cell)", "point_grid.h", 4, 0, "NCS"},
     {"graph adjacency (k ints)", "adaptive_neighbors.h", -1, 0, "NCS"},
     {"graph count, found (uint8)", "adaptive_neighbors.h", 2, 0, "NCS"},
     {"graph spacing (float)", "adaptive_neighbors.h", 4, 0, "NCS"},
     {"FillUnknownSpacing copy (float), transient", "adaptive_neighbors.h", 4, 0, "n"},
-    // Built by ForAllKNearest over all N points when more than 8 points are unresolved
+    // Built by ForAllKNearest over all N points when more than 64 points are unresolved
     // (fewer are answered by a scan); gone before FillUnknownSpacing runs, so it replaces
     // that term at the stage's peak.
     {"kd-tree fallback: order 4 + point copy 12 + nodes 3-7", "point_grid.h, point_kdtree.h", 21, 0, "k"},

