@@ -228,7 +228,7 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
         Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
             "for the target count, %d + %d split(s) for the error bound (own planes + blended surface), "
-            "%d narrowing(s) of one-point surfels",
+            "%d halving(s) of one-point surfels' axes",
             s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound,
             s.splitsForSurfaceBound, s.narrowingsForSurfaceBound);
     if (param.maxErrorFraction > 0) {

@@ -2,8 +2,8 @@
 # Rendering benchmark of the ellipse splatting (paper section 4) against the original meshes.
 #
 # For every model (default: dragon igea from ../shared/data; absent ones are skipped with the
-# reason): resample MODEL.ply at level 8 through the staged meshlabserver
-# (sample_data/resample_level8.mlx) into a .surfel file, then render from several views at
+# reason): resample MODEL.ply through the staged meshlabserver with a sample_data script
+# (default resample_level8.mlx) into a .surfel file, then render from several views at
 # 1024x1024 with tools/splat_render, all under one Xvfb (Mesa llvmpipe):
 #   - the original full mesh MODEL_mesh.ply (--mode mesh, Phong) as the reference,
 #   - the surfels as three-pass splats, one-pass opaque splats and plain 3-pixel points,
@@ -12,7 +12,10 @@
 # frame. Writes bench/render/results.md and results.csv (definitions: bench/render/README.md).
 #
 #   bash scripts/bench_render.sh [--models "dragon igea"] [--views "0/15 90/20 ..."] [--bench N]
-#                                [--size PX] [--no-variations] [--out DIR]
+#                                [--size PX] [--no-variations] [--out DIR] [--script NAME.mlx]
+# --script: the sample_data script that resamples (default resample_level8.mlx), e.g.
+# resample_max_error.mlx to see what the error bound's narrowed surfels cost in coverage; the
+# results then go to bench/render/<script name>/ unless --out says otherwise.
 # Environment: BUILD_DIR (default build/), DATA_DIR (default ../shared/data), PYTHON.
 # Needs the built targets `stage` and `splat_render` (it does not configure or build), Xvfb,
 # and python3 with numpy and matplotlib (Debian: python3-numpy python3-matplotlib).
@@ -26,6 +29,7 @@ bench_frames=5
 size=1024
 variations=1
 out="$here/bench/render"
+script=resample_level8.mlx
 while [ $# -gt 0 ]; do
   case "$1" in
     --models) models="$2"; shift 2 ;;
@@ -34,6 +38,9 @@ while [ $# -gt 0 ]; do
     --size) size="$2"; shift 2 ;;
     --no-variations) variations=0; shift ;;
     --out) out="$(mkdir -p "$2" && cd "$2" && pwd)"; shift 2 ;;
+    --script) script="$2"; shift 2
+              [ "$script" = resample_level8.mlx ] || [ "$out" != "$here/bench/render" ] ||
+                out="$here/bench/render/${script%.mlx}" ;;
     -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) echo "bench_render.sh: unknown option $1" >&2; exit 2 ;;
   esac
@@ -43,7 +50,7 @@ done
 if [ -z "${BENCH_RENDER_UNDER_XVFB:-}" ]; then
   command -v xvfb-run >/dev/null || { echo "bench_render.sh: xvfb-run not found (Debian: xvfb xauth)" >&2; exit 1; }
   BENCH_RENDER_UNDER_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "${BASH_SOURCE[0]}" \
-    --models "$models" --views "$views" --bench "$bench_frames" --size "$size" --out "$out" \
+    --models "$models" --views "$views" --bench "$bench_frames" --size "$size" --out "$out" --script "$script" \
     $([ "$variations" = 1 ] || echo --no-variations)
 fi
 
@@ -59,7 +66,8 @@ done
 # The .mlx scripts of the tree the build was configured from (their parameters match its plugin).
 src="$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/dev/null || true)"
 mlx_dir="$here/sample_data"
-[ -n "$src" ] && [ -f "$src/sample_data/resample_level8.mlx" ] && mlx_dir="$src/sample_data"
+[ -n "$src" ] && [ -f "$src/sample_data/$script" ] && mlx_dir="$src/sample_data"
+[ -f "$mlx_dir/$script" ] || { echo "bench_render.sh: $mlx_dir/$script not found" >&2; exit 2; }
 work="$out/scratch/runs"
 rm -rf "$work"
 mkdir -p "$work"
@@ -90,9 +98,9 @@ for model in $models; do
     echo "skipping $model: $([ -f "$points" ] || echo "$points") $([ -f "$mesh" ] || echo "$mesh") not found"
     continue
   fi
-  echo "== $model: resampling at level 8"
+  echo "== $model: resampling with $script"
   t0=$(date +%s.%N)
-  if ! "$server" -i "$points" -s "$mlx_dir/resample_level8.mlx" -o "$work/$model.surfel" \
+  if ! "$server" -i "$points" -s "$mlx_dir/$script" -o "$work/$model.surfel" \
       > "$work/${model}_resample.log" 2>&1; then
     echo "meshlabserver failed on $model, see $work/${model}_resample.log" >&2; exit 1
   fi
@@ -144,7 +152,7 @@ renderer="$(glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p' || 
   echo "Resampling plugin built $(date -u -r "$build/stage/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_gaussphere.so" '+%Y-%m-%d %H:%M UTC' 2>/dev/null || echo '?'), splat_render built $(date -u -r "$render" '+%Y-%m-%d %H:%M UTC')."
   echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg) (timings on a shared machine are noisy, ±20 %)."
   echo
-  echo "| model | input points | surfels (level 8) | resampling wall time incl. meshlabserver start (s) |"
+  echo "| model | input points | surfels ($script) | resampling wall time incl. meshlabserver start (s) |"
   echo "|---|---|---|---|"
   cat "$work/models.md"
   echo

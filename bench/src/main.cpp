@@ -28,7 +28,7 @@
 //                           the level N is where its level search starts)
 //       --max-error E       ours splits clusters until every point lies within E x bbox
 //                           diagonal of its own surfel's plane, then of the blended surface
-//                           the metric projects on, as far as splitting can (maxErrorFraction)
+//                           the metric projects on, splitting clusters and narrowing one-point surfels (maxErrorFraction)
 //     The peers are matched to ours' resulting count as always. With --max-error every row
 //     also reports the fraction of input points whose metric distance D* exceeds E, and ours'
 //     rows the largest distance to the own surfel's plane, the splits of each stage and the
@@ -172,7 +172,7 @@ void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, Simplified
 
 /// Largest distance of an input point to the plane of its own surfel (centre, normal), over the
 /// bounding-box diagonal of the input: what maxErrorFraction bounds first (then D*, the distance
-/// to the blended surface of all surfels, as far as splitting can).
+/// to the blended surface of all surfels).
 double MaxOwnPlaneDistance(const PointMesh &input, const vcg::gaussphere::ResamplingResult &result)
 {
     double worst = 0;

@@ -111,45 +111,57 @@ TEST(ErrorBound, SharpEdgesMeetTheBoundByNarrowingOnePointSurfels)
     const Measured m = Measure(s, r);
     EXPECT_LE(m.stats.normalizedDistance.max, bound * (1 + 1e-5));
     EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
-    // Only one-point surfels are narrowed, and never below kMinAxisScale of their size: the
-    // narrowest one-point surfel is within that factor of the widest (uniform spacing here).
-    float narrowest = 1e30f, widest = 0;
-    for (const Surfel &f : r.surfels) {
+    // A one-point surfel's semi-axis is the coverage margin times its point's spacing, halved
+    // 0 to 3 times: never below kMinAxisScale.
+    const PointGrid grid(s.points);
+    const NeighborGraph graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
+    const double margin = ResamplingParams().coverageMargin;
+    int narrowed = 0;
+    for (int i = 0; i < s.Size(); ++i) {
+        const Surfel &f = r.surfels[r.representative[i]];
         if (f.memberCount != 1) continue;
-        narrowest = std::min(narrowest, f.majorAxis.Norm());
-        widest = std::max(widest, f.majorAxis.Norm());
+        const double factor = f.majorAxis.Norm() / (margin * graph.spacing[i]);
+        const double halvings = -std::log2(factor);
+        EXPECT_NEAR(halvings, std::round(halvings), 1e-3) << "point " << i;
+        EXPECT_GE(factor, kMinAxisScale * (1 - 1e-4)) << "point " << i;
+        narrowed += factor < 0.99;
     }
-    EXPECT_LT(narrowest, 0.75f * widest) << "some one-point surfels were narrowed";
-    EXPECT_GE(narrowest, 0.5f * kMinAxisScale * widest) << "none below the floor (spacings differ by < 2x)";
+    EXPECT_GT(narrowed, 0);
 }
 
 // When the rounds run out first, the points left beyond the bound are counted exactly as the
-// metric finds them (one projection round on the cube, which needs several).
+// metric finds them (one and three projection rounds on the cube, which needs more; the third
+// measures narrowed surfels).
 TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
 {
     const gstest::PointSet s = gstest::CubeSurface(24, true);
     const ResamplingResult plain = gstest::Resample(s);
-    Clustering clusters;
-    clusters.label = plain.representative;
-    clusters.clusterCount = int(plain.surfels.size());
     const PointGrid grid(s.points);
     const NeighborGraph graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
     const double diagonal = plain.stats.diagonal;
     SurfelGenerationParams surfelParam;
     surfelParam.weightWidth = 0.01 * diagonal;
-    ClusterRefiner refiner(s.points, s.normals, clusters, 1.0 / (surfelParam.weightWidth * surfelParam.weightWidth));
     const double bound = 1e-4 * diagonal;
-    const SurfaceErrorBoundResult r =
-        SplitToSurfaceErrorBound(s.points, s.normals, graph.spacing, surfelParam, bound, diagonal, 1, refiner, clusters);
-    EXPECT_EQ(r.rounds, 1);
-    ResamplingResult capped;
-    capped.surfels = r.surfels;
-    capped.representative = clusters.label;
-    const Measured m = Measure(s, capped);
-    const int above = int(std::count_if(m.distance.begin(), m.distance.end(), [&](float d) { return d > bound; }));
-    EXPECT_GT(above, 0);
-    EXPECT_EQ(r.pointsAbove, above);
-    EXPECT_NEAR(r.maxDistance, m.stats.distance.max, 1e-6 * diagonal);
+    for (int rounds : {1, 3}) {
+        SCOPED_TRACE(rounds);
+        Clustering clusters;
+        clusters.label = plain.representative;
+        clusters.clusterCount = int(plain.surfels.size());
+        ClusterRefiner refiner(s.points, s.normals, clusters, 1.0 / (surfelParam.weightWidth * surfelParam.weightWidth));
+        const SurfaceErrorBoundResult r = SplitToSurfaceErrorBound(s.points, s.normals, graph.spacing, surfelParam,
+                                                                   bound, diagonal, rounds, refiner, clusters);
+        EXPECT_EQ(r.rounds, rounds);
+        EXPECT_EQ(r.narrowings > 0, rounds > 1);
+        ResamplingResult capped;
+        capped.surfels = r.surfels;
+        capped.representative = clusters.label;
+        const Measured m = Measure(s, capped);
+        const int above =
+            int(std::count_if(m.distance.begin(), m.distance.end(), [&](float d) { return d > bound; }));
+        EXPECT_GT(above, 0);
+        EXPECT_EQ(r.pointsAbove, above);
+        EXPECT_NEAR(r.maxDistance, m.stats.distance.max, 1e-6 * diagonal);
+    }
 }
 
 TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
@@ -168,6 +180,25 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     EXPECT_EQ(one.representative, two.representative);
     EXPECT_EQ(one.stats.pointsAboveErrorBound, two.stats.pointsAboveErrorBound);
     EXPECT_EQ(one.stats.surfaceErrorMax, two.stats.surfaceErrorMax);
+
+    // With narrowed surfels (sharp edges): the same axes too.
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    {
+        gstest::ThreadCount t(1);
+        one = gstest::Resample(cube, Bounded(1e-4));
+    }
+    {
+        gstest::ThreadCount t(2);
+        two = gstest::Resample(cube, Bounded(1e-4));
+    }
+    EXPECT_GT(one.stats.narrowingsForSurfaceBound, 0);
+    EXPECT_EQ(one.stats.narrowingsForSurfaceBound, two.stats.narrowingsForSurfaceBound);
+    EXPECT_EQ(one.representative, two.representative);
+    ASSERT_EQ(one.surfels.size(), two.surfels.size());
+    for (size_t c = 0; c < one.surfels.size(); ++c) {
+        EXPECT_EQ(one.surfels[c].majorAxis, two.surfels[c].majorAxis) << "surfel " << c;
+        EXPECT_EQ(one.surfels[c].minorAxis, two.surfels[c].minorAxis) << "surfel " << c;
+    }
 }
 
 // With a target count above what the bound needs, the target's splits come first and the

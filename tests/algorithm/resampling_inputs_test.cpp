@@ -241,11 +241,12 @@ TEST(ResamplingInputs, CallbackReturningFalseCancels)
     gstest::ExpectValidResult(r, s);
 }
 
-// Cluster normalization runs for seconds on tens of millions of points: it reports its
-// rounds, and a cancel there stops the run.
-bool CancelInNormalization(int, const char *what)
+// Cluster normalization runs for seconds on tens of millions of points: it reports after each
+// pass, not only when it starts, and a cancel there stops the run.
+int gNormalizationReports = 0;
+bool CancelAtSecondNormalizationReport(int, const char *what)
 {
-    return std::string(what).find("cluster normalization") == std::string::npos;
+    return std::string(what).find("cluster normalization") == std::string::npos || ++gNormalizationReports < 2;
 }
 
 TEST(ResamplingInputs, CancelDuringClusterNormalization)
@@ -253,7 +254,9 @@ TEST(ResamplingInputs, CancelDuringClusterNormalization)
     const gstest::PointSet s = gstest::FibonacciSphere(2000);
     OrientedPointMesh m;
     gstest::ToMesh(s, m);
-    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelInNormalization), ResamplingCancelled);
+    gNormalizationReports = 0;
+    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtSecondNormalizationReport), ResamplingCancelled);
+    EXPECT_EQ(gNormalizationReports, 2);
 }
 
 } // namespace

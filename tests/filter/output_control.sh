@@ -17,9 +17,9 @@ echo "bunny: $plain surfels without a bound, $bounded with MaxError 0.0005"
 grep -q "split(s) for the error bound" bounded.surfel.log
 # Below the blend's resolution at creases and thin parts (the bunny's ears) splitting alone
 # leaves points beyond it; narrowing the one-point surfels there meets it, and the log says so.
-grep -q "[1-9][0-9]* narrowing(s) of one-point surfels" bounded.surfel.log
+grep -q "[1-9][0-9]* halving(s) of one-point surfels' axes" bounded.surfel.log
 grep -q "error bound met: every point within" bounded.surfel.log
 loose=$(resample "$bunny" loose.surfel "$(script_with MaxError=0.01)")
 grep -q "error bound met: every point within" loose.surfel.log
-grep -q " 0 narrowing(s) of one-point surfels" loose.surfel.log
+grep -q " 0 halving(s) of one-point surfels' axes" loose.surfel.log
 echo "bunny: $loose surfels with MaxError 0.01"

@@ -7,18 +7,19 @@
 // wide neighbouring surfel across the crease weighs on it. SplitToSurfaceErrorBound closes
 // that gap: it projects every point on the blended surface, and splits the clusters of the
 // surfels blended at each point farther than the bound (the point's own and its neighbours'),
-// round after round, until no point is farther or none of those clusters can be split.
+// round after round.
 //
-// When every surfel around a point is down to one member, the blend still rounds a sharp
-// crease by a fraction of the sample spacing (even S' = S does: the metric's floor). Splitting
-// cannot help there; narrower weights can: the semi-axes of every one-point surfel blended at
-// such a point are halved, round after round, down to kMinAxisScale of their size, so the blend
-// there follows the nearest surfel's plane instead of averaging across the crease. All of them,
-// not only those across the crease: narrowing only those let the wider ones farther away take
-// over, and raised Δ*max (fandisk at 0.002: 0.010 -> 0.019). The cost is
-// coverage: narrowed splats may leave gaps along creases in a splat rendering. Points still
-// beyond the bound after that (or after maxRounds) are counted in the result, so that the caller
-// can report them.
+// Even when every surfel around a point is down to one member, the blend rounds a sharp crease
+// by a fraction of the sample spacing (S' = S does too: the metric's floor); splitting cannot
+// help there, narrower weights can. So in the same rounds, every one-point surfel among the
+// surfels nearest to a point still beyond the bound has its semi-axes halved, down to
+// kMinAxisScale of its size, and the blend there follows the nearest surfel's plane instead of
+// averaging across the crease. All of them, not only those across the crease: narrowing only
+// those let the wider ones farther away take over, and raised Δ*max (fandisk at 0.002: 0.010 ->
+// 0.019). The cost is coverage: narrowed splats may leave gaps along creases in a splat rendering.
+// The rounds end when no point is beyond the bound, when nothing is left to split or narrow, or
+// after maxRounds; the points still beyond it are counted in the result, so that the caller can
+// report them.
 #ifndef VCG_EXT_GAUSSPHERE_SURFACE_ERROR_BOUND_H
 #define VCG_EXT_GAUSSPHERE_SURFACE_ERROR_BOUND_H
 
@@ -44,7 +45,7 @@ constexpr float kMinAxisScale = 0.125f;
 struct SurfaceErrorBoundResult
 {
     int splits = 0;         ///< clusters split (with those re-split for their own planes)
-    int narrowings = 0;     ///< halvings of one-point surfels' semi-axes
+    int narrowings = 0;     ///< halvings of one-point surfels' semi-axes (up to 3 per surfel)
     int rounds = 0;         ///< projections of every point
     int pointsAbove = 0;    ///< points still farther than the bound from the blended surface
     double maxDistance = 0; ///< the largest distance of the last projection, model units
@@ -54,8 +55,9 @@ struct SurfaceErrorBoundResult
 
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
 /// maxDistance of the blended surface of the surfels GenerateSurfels makes from them, measured
-/// as vcg::tri::ComputeSurfelError measures (default SurfelErrorParams), or until no cluster
-/// near a point beyond it can be split, or after maxRounds projections. `progress(r, f)` is
+/// as vcg::tri::ComputeSurfelError measures (default SurfelErrorParams), narrowing one-point
+/// surfels as the file header says, or until nothing near a point beyond it can be split or
+/// narrowed, or after maxRounds projections. `progress(r, f)` is
 /// called from the calling thread during projection round r (from 1) with the fraction f of
 /// points projected so far; when it returns false the refinement stops at once and the result
 /// has cancelled = true (its figures are then partial).
@@ -151,7 +153,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::P
         result.narrowings += narrowed;
         if (splits == 0 && narrowed == 0) break;
         // A half's plane is fitted anew and may lie farther from a member than the whole's did.
-        result.splits += splits + refiner.SplitToErrorBound(maxDistance);
+        if (splits > 0) result.splits += splits + refiner.SplitToErrorBound(maxDistance);
     }
     return result;
 }
