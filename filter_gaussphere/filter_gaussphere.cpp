@@ -110,9 +110,10 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "fraction of the bounding box diagonal, e.g. 0.002 (0 = off). Clusters are split until every point "
         "lies within it of its own surfel's plane, then of the blended surface of all surfels (as the Surfel "
         "Approximation Error filter measures it). Near sharp creases that blend rounds the edge even when "
-        "every surfel is one point: there the one-point surfels are narrowed (down to 1/8 of their size) "
-        "until the blend follows them, which may leave gaps along creases in splat renderings. Points still "
-        "beyond the bound are counted in the log. With a target count, the bound wins when both cannot hold."));
+        "every surfel is one point: there the blend weight of one-point surfels is narrowed (down to 1/8, "
+        "per-vertex attribute SurfelBlendScale) until the blend follows them; their ellipses keep their size, "
+        "so splat renderings keep covering the surface. Points still beyond the bound are counted in the log. "
+        "With a target count, the bound wins when both cannot hold."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
 }

@@ -229,6 +229,9 @@ bool FilterSurfelErrorPlugin::measure(MeshDocument& md, const RichParameterList&
         attributes.ellipseMajorAxes = &majorAxes;
         attributes.ellipseMinorAxes = &minorAxes;
     }
+    std::vector<float> blendScale;
+    if (CopyPerVertexAttribute(simplified->cm, gs::kBlendScaleAttribute, blendScale))
+        attributes.blendScale = &blendScale;
     // On the same layer twice each point is its own surfel; its SurfelIndex names another layer.
     if (par.getBool("UseSurfelIndex") && original != simplified &&
         CopyPerVertexAttribute(original->cm, gs::kRepresentativeAttribute, representative)) {

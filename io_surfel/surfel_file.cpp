@@ -16,19 +16,22 @@ namespace {
 static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4,
               "the file stores IEEE 754 single precision floats");
 
-constexpr std::size_t kFloatPropertyCount = 14;
+// Version 2 appends blend_scale to version 1's float properties.
+constexpr std::size_t kFloatPropertyCount = 15;
+constexpr std::size_t kFloatPropertyCountVersion1 = 14;
 constexpr std::size_t kColorPropertyCount = 4;
-constexpr std::size_t kRecordBytes = kFloatPropertyCount * 4 + kColorPropertyCount;
 constexpr const char* kFloatPropertyNames[kFloatPropertyCount] = {
     "x", "y", "z", "nx", "ny", "nz", "radius",
-    "major_x", "major_y", "major_z", "minor_x", "minor_y", "minor_z", "quality"};
+    "major_x", "major_y", "major_z", "minor_x", "minor_y", "minor_z", "quality", "blend_scale"};
 constexpr const char* kColorPropertyNames[kColorPropertyCount] = {"red", "green", "blue", "alpha"};
+
+std::size_t recordBytes(std::size_t floatCount) { return floatCount * 4 + kColorPropertyCount; }
 
 // Where the float properties of a record live in a SurfelRecord, in kFloatPropertyNames' order.
 std::array<float*, kFloatPropertyCount> floatFields(SurfelRecord& s) {
   return {{&s.position[0], &s.position[1], &s.position[2], &s.normal[0], &s.normal[1],
            &s.normal[2], &s.radius, &s.majorAxis[0], &s.majorAxis[1], &s.majorAxis[2],
-           &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality}};
+           &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality, &s.blendScale}};
 }
 
 // Explicit byte order, so the file is little-endian whatever the host is.
@@ -54,10 +57,12 @@ void encode(SurfelRecord surfel, unsigned char* out) {
   std::copy(surfel.color.begin(), surfel.color.end(), out);
 }
 
-SurfelRecord decode(const unsigned char* in) {
+// A record of `floatCount` float properties (version 1 lacks the last one: it stays 1).
+SurfelRecord decode(const unsigned char* in, std::size_t floatCount) {
   SurfelRecord surfel;
-  for (float* field : floatFields(surfel)) {
-    *field = loadFloat(in);
+  const std::array<float*, kFloatPropertyCount> fields = floatFields(surfel);
+  for (std::size_t f = 0; f < floatCount; ++f) {
+    *fields[f] = loadFloat(in);
     in += 4;
   }
   std::copy(in, in + kColorPropertyCount, surfel.color.begin());
@@ -115,15 +120,16 @@ bool fail(std::string& error, const std::string& reason) {
 }
 
 // Checks the header against the layout of docs/surfel_format.md and returns the number of
-// records it announces; the stream is left at the first data byte.
-bool readHeader(std::istream& in, std::uint64_t& count, std::string& error) {
+// records it announces and their float properties (by version); the stream is left at the first
+// data byte.
+bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount, std::string& error) {
   std::size_t headerBytes = 0;
   std::string line;
   if (!readHeaderLine(in, headerBytes, line) || line != "ply")
     return fail(error, "not a PLY file: it does not start with a 'ply' line");
 
   bool hasFormat = false, hasMagic = false, hasVertexElement = false;
-  std::size_t propertyCount = 0;
+  std::vector<std::string> properties; // checked once the version is known
   for (;;) {
     if (!readHeaderLine(in, headerBytes, line))
       return fail(error, "the PLY header has no 'end_header' line");
@@ -134,11 +140,13 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::string& error) {
     if (keyword == "obj_info") continue;
     if (keyword == "comment") {
       const std::string text = afterKeyword(line);
-      if (text == kSurfelFileMagic)
+      if (text == kSurfelFileMagic || text == kSurfelFileMagicVersion1) {
         hasMagic = true;
-      else if (text.compare(0, 18, "gaussphere-surfel ") == 0)
+        floatCount = text == kSurfelFileMagic ? kFloatPropertyCount : kFloatPropertyCountVersion1;
+      } else if (text.compare(0, 18, "gaussphere-surfel ") == 0) {
         return fail(error, "unsupported .surfel version '" + text + "' (this reader reads '" +
-                               kSurfelFileMagic + "')");
+                               kSurfelFileMagic + "' and '" + kSurfelFileMagicVersion1 + "')");
+      }
     } else if (keyword == "format") {
       if (words.size() != 3 || words[1] != "binary_little_endian" || words[2] != "1.0")
         return fail(error, "unsupported PLY encoding '" + line +
@@ -151,16 +159,10 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::string& error) {
         return fail(error, "invalid vertex count in '" + line + "'");
       hasVertexElement = true;
     } else if (keyword == "property") {
-      const bool isColor = propertyCount >= kFloatPropertyCount;
-      const std::size_t index = propertyCount++;
-      const bool expected =
-          hasVertexElement && index < kFloatPropertyCount + kColorPropertyCount &&
-          words.size() == 3 &&
-          (isColor ? isUcharType(words[1]) && words[2] == kColorPropertyNames[index - kFloatPropertyCount]
-                   : isFloatType(words[1]) && words[2] == kFloatPropertyNames[index]);
-      if (!expected)
+      if (!hasVertexElement || words.size() != 3)
         return fail(error, "unexpected '" + line + "' (vertex property " +
-                               std::to_string(index + 1) + " of the .surfel layout)");
+                               std::to_string(properties.size() + 1) + " of the .surfel layout)");
+      properties.push_back(line);
     } else {
       return fail(error, "unknown PLY header line '" + line + "'");
     }
@@ -170,10 +172,18 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::string& error) {
     return fail(error, std::string("not a .surfel file: no 'comment ") + kSurfelFileMagic +
                            "' in the PLY header");
   if (!hasVertexElement) return fail(error, "the PLY header has no vertex element");
-  if (propertyCount != kFloatPropertyCount + kColorPropertyCount)
-    return fail(error, "the vertex element has " + std::to_string(propertyCount) +
-                           " properties instead of " +
-                           std::to_string(kFloatPropertyCount + kColorPropertyCount));
+  for (std::size_t index = 0; index < properties.size() && index < floatCount + kColorPropertyCount; ++index) {
+    const std::vector<std::string> words = splitWords(properties[index]);
+    const bool expected =
+        index >= floatCount ? isUcharType(words[1]) && words[2] == kColorPropertyNames[index - floatCount]
+                            : isFloatType(words[1]) && words[2] == kFloatPropertyNames[index];
+    if (!expected)
+      return fail(error, "unexpected '" + properties[index] + "' (vertex property " +
+                             std::to_string(index + 1) + " of the .surfel layout)");
+  }
+  if (properties.size() != floatCount + kColorPropertyCount)
+    return fail(error, "the vertex element has " + std::to_string(properties.size()) +
+                           " properties instead of " + std::to_string(floatCount + kColorPropertyCount));
   return true;
 }
 
@@ -194,34 +204,36 @@ bool remainingBytes(std::istream& in, std::uint64_t& bytes) {
 bool operator==(const SurfelRecord& a, const SurfelRecord& b) {
   return a.position == b.position && a.normal == b.normal && a.radius == b.radius &&
          a.majorAxis == b.majorAxis && a.minorAxis == b.minorAxis && a.quality == b.quality &&
-         a.color == b.color;
+         a.blendScale == b.blendScale && a.color == b.color;
 }
 
 bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error) {
   surfels.clear();
   std::uint64_t count = 0;
-  if (!readHeader(in, count, error)) return false;
+  std::size_t floatCount = kFloatPropertyCount;
+  if (!readHeader(in, count, floatCount, error)) return false;
+  const std::size_t bytesPerRecord = recordBytes(floatCount);
 
   // Checking the size first also keeps a corrupt count from allocating a huge vector.
   std::uint64_t dataBytes = 0;
   if (!remainingBytes(in, dataBytes)) return fail(error, "cannot determine the file size");
-  if (count > dataBytes / kRecordBytes)
+  if (count > dataBytes / bytesPerRecord)
     return fail(error, "truncated file: the header announces " + std::to_string(count) +
-                           " surfels, the data holds " + std::to_string(dataBytes / kRecordBytes));
-  if (dataBytes != count * kRecordBytes)
-    return fail(error, std::to_string(dataBytes - count * kRecordBytes) +
+                           " surfels, the data holds " + std::to_string(dataBytes / bytesPerRecord));
+  if (dataBytes != count * bytesPerRecord)
+    return fail(error, std::to_string(dataBytes - count * bytesPerRecord) +
                            " unexpected bytes after the last surfel");
 
   surfels.reserve(count);
-  std::vector<unsigned char> chunk(kRecordBytes * std::min<std::uint64_t>(count, kRecordsPerChunk));
+  std::vector<unsigned char> chunk(bytesPerRecord * std::min<std::uint64_t>(count, kRecordsPerChunk));
   while (surfels.size() < count) {
     const std::size_t records = std::min<std::uint64_t>(count - surfels.size(), kRecordsPerChunk);
-    if (!in.read(reinterpret_cast<char*>(chunk.data()), records * kRecordBytes)) {
+    if (!in.read(reinterpret_cast<char*>(chunk.data()), records * bytesPerRecord)) {
       error = "read error after " + std::to_string(surfels.size()) + " surfels";
       surfels.clear();
       return false;
     }
-    for (std::size_t r = 0; r < records; ++r) surfels.push_back(decode(&chunk[r * kRecordBytes]));
+    for (std::size_t r = 0; r < records; ++r) surfels.push_back(decode(&chunk[r * bytesPerRecord], floatCount));
   }
   return true;
 }
@@ -240,11 +252,12 @@ bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, s
   for (const char* name : kColorPropertyNames) out << "property uchar " << name << "\n";
   out << "end_header\n";
 
-  std::vector<unsigned char> chunk(kRecordBytes * kRecordsPerChunk);
+  const std::size_t bytesPerRecord = recordBytes(kFloatPropertyCount);
+  std::vector<unsigned char> chunk(bytesPerRecord * kRecordsPerChunk);
   for (std::size_t first = 0; first < surfels.size() && out; first += kRecordsPerChunk) {
     const std::size_t records = std::min(surfels.size() - first, kRecordsPerChunk);
-    for (std::size_t r = 0; r < records; ++r) encode(surfels[first + r], &chunk[r * kRecordBytes]);
-    out.write(reinterpret_cast<const char*>(chunk.data()), records * kRecordBytes);
+    for (std::size_t r = 0; r < records; ++r) encode(surfels[first + r], &chunk[r * bytesPerRecord]);
+    out.write(reinterpret_cast<const char*>(chunk.data()), records * bytesPerRecord);
   }
   if (!out.flush()) return fail(error, "write error");
   return true;
@@ -263,6 +276,10 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
   const std::string reason = std::strerror(errno);
   std::remove(partPath.c_str());
   return fail(error, "cannot write '" + path + "': " + reason);
+}
+
+bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {
+  return std::any_of(surfels.begin(), surfels.end(), [](const SurfelRecord& s) { return s.blendScale != 1; });
 }
 
 bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels) {

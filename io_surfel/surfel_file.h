@@ -1,7 +1,8 @@
 // Reader and writer of `.surfel` files (docs/surfel_format.md): a binary little-endian
 // PLY file with one `vertex` element whose properties are, in this order,
-//   float x y z nx ny nz radius major_x major_y major_z minor_x minor_y minor_z quality
+//   float x y z nx ny nz radius major_x major_y major_z minor_x minor_y minor_z quality blend_scale
 //   uchar red green blue alpha
+// (version 2; version 1 files, without blend_scale, are read too).
 // No Qt, no vcg: the MeshLab plugin, tests and tools share this code (surfel_records_mesh.h
 // converts to and from vcg meshes).
 #ifndef GAUSSPHERE_IO_SURFEL_SURFEL_FILE_H
@@ -26,14 +27,17 @@ struct SurfelRecord {
   Vec3f majorAxis{};
   Vec3f minorAxis{};
   float quality = 0;
+  float blendScale = 1;  // factor on the axes in blending weights only (version 2; 1 in version 1)
   std::array<std::uint8_t, 4> color{};  // red, green, blue, alpha
 };
 
 bool operator==(const SurfelRecord& a, const SurfelRecord& b);
 inline bool operator!=(const SurfelRecord& a, const SurfelRecord& b) { return !(a == b); }
 
-// The `comment` line that marks a PLY file as a `.surfel` file of this version.
-constexpr const char* kSurfelFileMagic = "gaussphere-surfel 1";
+// The `comment` line that marks a PLY file as a `.surfel` file of the version written; the
+// reader also accepts kSurfelFileMagicVersion1.
+constexpr const char* kSurfelFileMagic = "gaussphere-surfel 2";
+constexpr const char* kSurfelFileMagicVersion1 = "gaussphere-surfel 1";
 
 // Reading is strict: anything but the exact layout above (extra `comment` and `obj_info`
 // lines aside), a data section shorter or longer than the header announces, or an
@@ -48,6 +52,10 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
 // True when some surfel has a non-zero axis. A file without any is one written from a layer
 // without ellipse frames, and loads without the ellipse attributes.
 bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels);
+
+// True when some surfel's blend scale differs from 1: only then does a loaded layer get the
+// blend scale attribute.
+bool hasBlendScales(const std::vector<SurfelRecord>& surfels);
 
 }  // namespace surfel_io
 

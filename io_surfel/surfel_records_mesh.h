@@ -31,7 +31,8 @@ Point3 toPoint3(const Vec3f& v) {
 
 // One record per live (not deleted) vertex, in vertex order. What the mesh lacks is written
 // as zero: the radius without the radius component, an axis without its attribute (the
-// two attributes are looked up independently); faces and edges are not part of the format.
+// two attributes are looked up independently); a missing blend scale as 1; faces and edges
+// are not part of the format.
 // Non-const: vcg looks attributes up through a mutable mesh.
 template <class MeshType>
 std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
@@ -41,6 +42,8 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
   using vcg::gaussphere::kMinorAxisAttribute;
   auto major = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
   auto minor = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
+  auto blend = Allocator::template FindPerVertexAttribute<float>(mesh, vcg::gaussphere::kBlendScaleAttribute);
+  const bool hasBlend = Allocator::IsValidHandle(mesh, blend);
   const bool hasMajor = Allocator::IsValidHandle(mesh, major);
   const bool hasMinor = Allocator::IsValidHandle(mesh, minor);
   const bool hasNormal = vcg::tri::HasPerVertexNormal(mesh);
@@ -59,6 +62,7 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
     if (hasMajor) s.majorAxis = detail::toVec3f(major[v]);
     if (hasMinor) s.minorAxis = detail::toVec3f(minor[v]);
     if (hasQuality) s.quality = float(v->cQ());
+    if (hasBlend) s.blendScale = blend[v];
     if (hasColor)
       for (int c = 0; c < 4; ++c) s.color[c] = v->cC()[c];
     surfels.push_back(s);
@@ -70,7 +74,8 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
 // the components the mesh has are filled: in CMeshO the radius is optional and must be
 // enabled first. Both ellipse attributes are added when some surfel has a non-zero axis
 // (hasEllipseFrames) and neither otherwise: a file written from a layer without ellipse
-// frames reads back without them, and none are synthesized from the radius.
+// frames reads back without them, and none are synthesized from the radius. The blend scale
+// attribute likewise exists only when some surfel's differs from 1 (hasBlendScales).
 template <class MeshType>
 void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) {
   using Point3 = typename MeshType::CoordType;
@@ -90,6 +95,10 @@ void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) 
     major = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
     minor = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   }
+  typename MeshType::template PerVertexAttributeHandle<float> blend;
+  const bool withBlend = hasBlendScales(surfels);
+  if (withBlend)
+    blend = Allocator::template GetPerVertexAttribute<float>(mesh, vcg::gaussphere::kBlendScaleAttribute);
   for (const SurfelRecord& s : surfels) {
     v->P() = detail::toPoint3<Point3>(s.position);
     if (hasNormal) v->N() = detail::toPoint3<typename MeshType::VertexType::NormalType>(s.normal);
@@ -100,6 +109,7 @@ void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) 
       major[v] = detail::toPoint3<Point3>(s.majorAxis);
       minor[v] = detail::toPoint3<Point3>(s.minorAxis);
     }
+    if (withBlend) blend[v] = s.blendScale;
     ++v;
   }
 }

@@ -163,9 +163,11 @@ void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, Simplified
     vcg::gaussphere::WriteSurfels(result.surfels, set.mesh);
     set.major.clear();
     set.minor.clear();
+    set.blendScale.clear();
     for (const auto &s : result.surfels) {
         set.major.push_back(s.majorAxis);
         set.minor.push_back(s.minorAxis);
+        set.blendScale.push_back(s.blendScale);
     }
     set.representative = result.representative;
 }

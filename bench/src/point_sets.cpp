@@ -62,6 +62,7 @@ vcg::tri::SurfelErrorAttributes SimplifiedSet::Attributes() const
         a.ellipseMinorAxes = &minor;
     }
     if (!representative.empty()) a.representative = &representative;
+    if (!blendScale.empty()) a.blendScale = &blendScale;
     return a;
 }
 
@@ -72,6 +73,7 @@ void MakeIdentitySet(const PointMesh &input, SimplifiedSet &set)
     CopySubset(input, all, set.mesh);
     set.major.clear();
     set.minor.clear();
+    set.blendScale.clear();
     // Each point is represented by itself, so the own-surfel shape error is exactly 0.
     set.representative = all;
 }

@@ -33,6 +33,7 @@ struct SimplifiedSet
 {
     PointMesh mesh;                         ///< centres and normals
     std::vector<vcg::Point3f> major, minor; ///< ellipse semi-axes per vertex; empty: circular
+    std::vector<float> blendScale;          ///< per vertex (SurfelBlendScale); empty: all 1
     std::vector<int> representative;        ///< per input point: its surfel; empty: nearest centre
 
     int Count() const { return mesh.vn; }

@@ -32,13 +32,16 @@ Measured Measure(const gstest::PointSet &s, const ResamplingResult &r)
     gstest::ToMesh(s, input);
     WriteSurfels(r.surfels, surfels);
     std::vector<vcg::Point3f> major, minor;
+    std::vector<float> blendScale;
     for (const Surfel &surfel : r.surfels) {
         major.push_back(surfel.majorAxis);
         minor.push_back(surfel.minorAxis);
+        blendScale.push_back(surfel.blendScale);
     }
     vcg::tri::SurfelErrorAttributes attributes;
     attributes.ellipseMajorAxes = &major;
     attributes.ellipseMinorAxes = &minor;
+    attributes.blendScale = &blendScale;
     attributes.representative = &r.representative;
     Measured m;
     m.stats = vcg::tri::ComputeSurfelError(input, surfels, vcg::tri::SurfelErrorParams(), attributes, &m.distance);
@@ -97,9 +100,9 @@ TEST(ErrorBound, MetBoundIsConfirmedByTheMetric)
 }
 
 // On a cube with sharp edges the blend rounds every edge even when each surfel is a single
-// point (splitting alone left points beyond this bound). Narrowing the one-point surfels blended
-// there makes the blend follow the nearest surfel's plane: the bound holds, and the metric
-// confirms it.
+// point (splitting alone left points beyond this bound). Narrowing the blend of the one-point
+// surfels there makes it follow the nearest surfel's plane: the bound holds, and the metric
+// confirms it. The ellipses keep their size (coverage).
 TEST(ErrorBound, SharpEdgesMeetTheBoundByNarrowingOnePointSurfels)
 {
     const gstest::PointSet s = gstest::CubeSurface(24, true);
@@ -111,20 +114,23 @@ TEST(ErrorBound, SharpEdgesMeetTheBoundByNarrowingOnePointSurfels)
     const Measured m = Measure(s, r);
     EXPECT_LE(m.stats.normalizedDistance.max, bound * (1 + 1e-5));
     EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
-    // A one-point surfel's semi-axis is the coverage margin times its point's spacing, halved
-    // 0 to 3 times: never below kMinAxisScale.
+    // A one-point surfel's semi-axis stays the coverage margin times its point's spacing; its
+    // blend scale is 1 halved 0 to 3 times, never below kMinBlendScale; other surfels keep 1.
     const PointGrid grid(s.points);
     const NeighborGraph graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
     const double margin = ResamplingParams().coverageMargin;
     int narrowed = 0;
     for (int i = 0; i < s.Size(); ++i) {
         const Surfel &f = r.surfels[r.representative[i]];
-        if (f.memberCount != 1) continue;
-        const double factor = f.majorAxis.Norm() / (margin * graph.spacing[i]);
-        const double halvings = -std::log2(factor);
-        EXPECT_NEAR(halvings, std::round(halvings), 1e-3) << "point " << i;
-        EXPECT_GE(factor, kMinAxisScale * (1 - 1e-4)) << "point " << i;
-        narrowed += factor < 0.99;
+        if (f.memberCount != 1) {
+            EXPECT_EQ(f.blendScale, 1.f) << "point " << i;
+            continue;
+        }
+        EXPECT_NEAR(f.majorAxis.Norm(), margin * graph.spacing[i], 1e-5 * graph.spacing[i]) << "point " << i;
+        const double halvings = -std::log2(f.blendScale);
+        EXPECT_NEAR(halvings, std::round(halvings), 1e-6) << "point " << i;
+        EXPECT_GE(f.blendScale, kMinBlendScale) << "point " << i;
+        narrowed += f.blendScale < 1;
     }
     EXPECT_GT(narrowed, 0);
 }
@@ -198,6 +204,7 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     for (size_t c = 0; c < one.surfels.size(); ++c) {
         EXPECT_EQ(one.surfels[c].majorAxis, two.surfels[c].majorAxis) << "surfel " << c;
         EXPECT_EQ(one.surfels[c].minorAxis, two.surfels[c].minorAxis) << "surfel " << c;
+        EXPECT_EQ(one.surfels[c].blendScale, two.surfels[c].blendScale) << "surfel " << c;
     }
 }
 

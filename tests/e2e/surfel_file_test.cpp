@@ -20,7 +20,7 @@ using surfel_io::SurfelRecord;
 const char* const kHeader =
     "ply\n"
     "format binary_little_endian 1.0\n"
-    "comment gaussphere-surfel 1\n"
+    "comment gaussphere-surfel 2\n"
     "element vertex 3\n"
     "property float x\nproperty float y\nproperty float z\n"
     "property float nx\nproperty float ny\nproperty float nz\n"
@@ -28,6 +28,7 @@ const char* const kHeader =
     "property float major_x\nproperty float major_y\nproperty float major_z\n"
     "property float minor_x\nproperty float minor_y\nproperty float minor_z\n"
     "property float quality\n"
+    "property float blend_scale\n"
     "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
     "end_header\n";
 
@@ -60,10 +61,30 @@ void expectRefused(const std::string& bytes, const std::string& reason) {
   EXPECT_TRUE(surfels.empty());
 }
 
-TEST(SurfelFile, WritesTheDocumentedHeaderAnd60BytesPerSurfel) {
+TEST(SurfelFile, WritesTheDocumentedHeaderAnd64BytesPerSurfel) {
   const std::string bytes = encode(syntheticSurfels(3));
   ASSERT_EQ(bytes.substr(0, std::string(kHeader).size()), kHeader);
-  EXPECT_EQ(bytes.size(), std::string(kHeader).size() + 3 * 60);
+  EXPECT_EQ(bytes.size(), std::string(kHeader).size() + 3 * 64);
+}
+
+// Version 1 files (no blend_scale, 60 bytes per surfel) read with a blend scale of 1.
+TEST(SurfelFile, ReadsVersion1Files) {
+  std::vector<SurfelRecord> expected = syntheticSurfels(3);
+  const std::string v2 = encode(expected);
+  const std::size_t headerSize = std::string(kHeader).size();
+  std::string v1 = std::string(kHeader);
+  v1.replace(v1.find("gaussphere-surfel 2"), 19, "gaussphere-surfel 1");
+  v1.erase(v1.find("property float blend_scale\n"), 27);
+  for (std::size_t r = 0; r < 3; ++r) {
+    const std::string record = v2.substr(headerSize + r * 64, 64);
+    v1 += record.substr(0, 56) + record.substr(60, 4);  // without the blend scale
+  }
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  ASSERT_TRUE(decode(v1, surfels, error)) << error;
+  for (SurfelRecord& s : expected) s.blendScale = 1;
+  EXPECT_EQ(surfels, expected);
+  expectRefused(v1 + std::string(4, '\0'), "4 unexpected bytes after the last surfel");
 }
 
 TEST(SurfelFile, StoresLittleEndianFloatsAndBytesInPropertyOrder) {
@@ -71,9 +92,10 @@ TEST(SurfelFile, StoresLittleEndianFloatsAndBytesInPropertyOrder) {
   s.position = {{1.0f, 0, 0}};
   s.color = {{1, 2, 3, 4}};
   const std::string bytes = encode({s});
-  const std::string data = bytes.substr(bytes.size() - 60);
+  const std::string data = bytes.substr(bytes.size() - 64);
   EXPECT_EQ(data.substr(0, 4), std::string("\x00\x00\x80\x3f", 4));  // 1.0f
-  EXPECT_EQ(data.substr(56), std::string("\x01\x02\x03\x04", 4));
+  EXPECT_EQ(data.substr(56, 4), std::string("\x00\x00\x80\x3f", 4));  // blend scale 1.0f
+  EXPECT_EQ(data.substr(60), std::string("\x01\x02\x03\x04", 4));
 }
 
 TEST(SurfelFile, RoundTripThroughAFileIsBitExact) {
@@ -131,9 +153,12 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
   expectRefused(withHeaderEdit("binary_little_endian", "binary_big_endian"),
                 "unsupported PLY encoding");
   expectRefused(withHeaderEdit("format binary_little_endian 1.0\n", ""), "no 'format' line");
-  expectRefused(withHeaderEdit("comment gaussphere-surfel 1\n", ""), "not a .surfel file");
-  expectRefused(withHeaderEdit("gaussphere-surfel 1", "gaussphere-surfel 2"),
+  expectRefused(withHeaderEdit("comment gaussphere-surfel 2\n", ""), "not a .surfel file");
+  expectRefused(withHeaderEdit("gaussphere-surfel 2", "gaussphere-surfel 3"),
                 "unsupported .surfel version");
+  // A version 1 comment on version 2 data: the layout does not match the version.
+  expectRefused(withHeaderEdit("gaussphere-surfel 2", "gaussphere-surfel 1"),
+                "unexpected 'property float blend_scale' (vertex property 15");
   expectRefused(withHeaderEdit("end_header", "element face 0\nend_header"),
                 "unexpected 'element face 0'");
   expectRefused(withHeaderEdit("element vertex 3\n", ""), "unexpected 'property float x'");
@@ -145,9 +170,9 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
                 "unexpected 'property float z' (vertex property 2");
   expectRefused(withHeaderEdit("uchar alpha", "list uchar int vertex_indices"),
                 "unexpected 'property list");
-  expectRefused(withHeaderEdit("property uchar alpha\n", ""), "has 17 properties instead of 18");
+  expectRefused(withHeaderEdit("property uchar alpha\n", ""), "has 18 properties instead of 19");
   expectRefused(withHeaderEdit("end_header", "property uchar extra\nend_header"),
-                "(vertex property 19");
+                "has 20 properties instead of 19");
   expectRefused(withHeaderEdit("end_header", "made_up keyword\nend_header"),
                 "unknown PLY header line");
 }
@@ -159,8 +184,8 @@ TEST(SurfelFile, RefusesACountTheDataCannotHoldWithoutAllocatingIt) {
 }
 
 TEST(SurfelFile, AcceptsWhatOtherPlyWritersAdd) {
-  std::string bytes = withHeaderEdit("comment gaussphere-surfel 1\n",
-                                     "obj_info from a tool\ncomment gaussphere-surfel 1\n"
+  std::string bytes = withHeaderEdit("comment gaussphere-surfel 2\n",
+                                     "obj_info from a tool\ncomment gaussphere-surfel 2\n"
                                      "comment another comment\n");
   bytes.replace(bytes.find("float x"), 7, "float32 x");
   bytes.replace(bytes.find("uchar red"), 9, "uint8 red");

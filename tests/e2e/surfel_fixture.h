@@ -38,6 +38,7 @@ inline std::vector<surfel_io::SurfelRecord> syntheticSurfels(std::size_t count) 
     s.radius = std::sqrt(s.majorAxis[0] * s.majorAxis[0] + s.majorAxis[1] * s.majorAxis[1] +
                          s.majorAxis[2] * s.majorAxis[2]);
     s.quality = float(1 + i % 9);
+    s.blendScale = i % 4 == 3 ? 0.25f : 1.f;
     s.color = {{std::uint8_t(i * 37), std::uint8_t(i * 91), std::uint8_t(i * 53),
                 std::uint8_t(i % 2 ? 200 : 255)}};
   }

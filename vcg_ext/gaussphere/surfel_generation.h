@@ -46,6 +46,9 @@ struct Surfel
     vcg::Point3f majorAxis;  ///< semi-axis vector, tangent
     vcg::Point3f minorAxis;  ///< semi-axis vector, tangent, orthogonal to majorAxis, not longer
     int memberCount = 0;
+    /// Factor in (0, 1] on the axes for blending only (the error bound narrows one-point surfels
+    /// at creases, surface_error_bound.h); the axes themselves keep covering the surface.
+    float blendScale = 1.f;
 };
 
 struct SurfelGenerationParams
@@ -53,9 +56,9 @@ struct SurfelGenerationParams
     double weightWidth = 0.01;     ///< h of theta(r) = exp(-r^2/h^2), in model units
     double coverageMargin = 0.75;  ///< semi-axes grow by this times the mean local spacing
     double minAspect = 0.1;        ///< lower bound of minor/major, avoids needle ellipses
-    /// Per cluster: a factor on both semi-axes (SplitToSurfaceErrorBound narrows the surfels
-    /// that pull the blend off a point no split can help); null, or clusters beyond its size: 1.
-    const std::vector<float> *axisScale = nullptr;
+    /// Per cluster: Surfel::blendScale (SplitToSurfaceErrorBound narrows the blend of one-point
+    /// surfels at creases); null, or clusters beyond its size: 1.
+    const std::vector<float> *blendScale = nullptr;
 };
 
 namespace detail {
@@ -201,15 +204,13 @@ inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &poin
         }
         scale = std::sqrt(scale);
         const double margin = param.coverageMargin * meanSpacing;
-        const double narrowing =
-            param.axisScale && c < int(param.axisScale->size()) ? double((*param.axisScale)[c]) : 1.0;
-
         Surfel &s = surfels[c];
         s.position = detail::ToPoint(frame.center);
         s.normal = detail::ToPoint(normal);
-        s.majorAxis = detail::ToPoint(u * (narrowing * (scale + margin)));
-        s.minorAxis = detail::ToPoint(v * (narrowing * (aspect * scale + margin)));
+        s.majorAxis = detail::ToPoint(u * (scale + margin));
+        s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
         s.memberCount = size;
+        if (param.blendScale && c < int(param.blendScale->size())) s.blendScale = (*param.blendScale)[c];
     }
     return surfels;
 }

@@ -22,7 +22,10 @@
  *    SurfelErrorParams::spacingNeighborCount nearest other surfel centers (with the default
  *    of 6 this is exactly the step of a hexagonal sampling).
  * Plain oriented points are thus circular surfels, and with the defaults the Gaussian width of a
- * plain point is 1.5× its local spacing.
+ * plain point is 1.5× its local spacing. A surfel may carry a blend scale s_i in (0, 1]
+ * (SurfelErrorAttributes::blendScale, the SurfelBlendScale attribute), which multiplies a_i and
+ * b_i in its weight only: the blend then follows that surfel closely near its center (at a sharp
+ * crease), while its ellipse keeps the size that covers its area in a rendering.
  *
  * At a point x the k = SurfelErrorParams::neighborCount surfels whose centers are nearest to
  * x are blended (Alexa & Adamson 2004, "On normals and projection operators for surfaces
@@ -109,6 +112,10 @@ struct SurfelErrorAttributes
     /// Per vertex of S: index in simplified.vert of the surfel representing it (SurfelIndex);
     /// -1, or a surfel without usable normal, falls back to the nearest surfel center.
     const std::vector<int>* representative = nullptr;
+    /// Per vertex of S': a factor in (0, 1] on the widths of its weight only (SurfelBlendScale:
+    /// a resampler's way to make the blend follow a surfel closely, at a crease, while the
+    /// ellipse still covers its area). Null, or a value outside (0, 1]: 1.
+    const std::vector<float>* blendScale = nullptr;
 };
 
 /// RMS, maximum and 99.9th percentile of one per-point error over the points it is defined for.
@@ -353,6 +360,9 @@ inline void CheckAttributes(const SurfelErrorAttributes& a, std::size_t original
         (a.ellipseMajorAxes->size() != simplifiedSize || a.ellipseMinorAxes->size() != simplifiedSize))
         throw std::invalid_argument(
             "surfel error: the ellipse axes must have one entry per vertex of the simplified set");
+    if (a.blendScale != nullptr && a.blendScale->size() != simplifiedSize)
+        throw std::invalid_argument(
+            "surfel error: the blend scales must have one entry per vertex of the simplified set");
     if (a.representative == nullptr)
         return;
     if (a.representative->size() != originalSize)
@@ -385,6 +395,13 @@ inline bool EllipseOf(const SurfelErrorAttributes& a, std::size_t vertex, const 
 inline double SmallestSurfelSize(const Box3d& box) { return box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0; }
 
 /// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
+/// The blend scale of vertex v of S' (SurfelErrorAttributes::blendScale), 1 when absent or invalid.
+inline double BlendScaleOf(const SurfelErrorAttributes& a, std::size_t vertex)
+{
+    const double scale = a.blendScale ? double((*a.blendScale)[vertex]) : 1.0;
+    return scale > 0 && scale <= 1 ? scale : 1.0;
+}
+
 inline void SetWidths(double major, double minor, double sigma, double smallestSize, BlendingSurfel& s)
 {
     major = std::max(major, smallestSize);
@@ -459,7 +476,8 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
                                     ? radius
                                     : LocalSpacing(tree, centers, i, params.spacingNeighborCount, queue);
             }
-            SetWidths(major, minor, sigma, smallestSize, s);
+            const double scale = BlendScaleOf(attributes, v);
+            SetWidths(scale * major, scale * minor, sigma, smallestSize, s);
         }
     }
     return SurfelSurface(std::move(surfels), std::move(tree), params.neighborCount);
@@ -474,18 +492,21 @@ using surfel_error_detail::SurfelSurface;
  * surface.Project(q, n_q, params.maxIterations, params.convergenceTolerance × diagonal, scratch);
  * afterwards scratch.queue holds the surfels blended at the last step.
  * \pre the four arrays have the same non-zero size; centers finite, normals of unit length,
- *      majorAxes[i] and minorAxes[i] tangent semi-axis vectors, the major one non-zero.
+ *      majorAxes[i] and minorAxes[i] tangent semi-axis vectors, the major one non-zero;
+ *      blendScale, if given, of the same size (see SurfelErrorAttributes::blendScale).
  */
 inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& centers,
                                               const std::vector<Point3f>& normals,
                                               const std::vector<Point3f>& majorAxes,
                                               const std::vector<Point3f>& minorAxes,
-                                              const SurfelErrorParams& params = SurfelErrorParams())
+                                              const SurfelErrorParams& params = SurfelErrorParams(),
+                                              const std::vector<float>* blendScale = nullptr)
 {
     using namespace surfel_error_detail;
     CheckParams(params);
     const std::size_t count = centers.size();
-    if (count == 0 || normals.size() != count || majorAxes.size() != count || minorAxes.size() != count)
+    if (count == 0 || normals.size() != count || majorAxes.size() != count || minorAxes.size() != count ||
+        (blendScale && blendScale->size() != count))
         throw std::invalid_argument("surfel surface: give one center, normal and pair of axes per surfel");
     std::vector<BlendingSurfel> surfels(count);
     std::vector<Point3d> centersD(count);
@@ -498,6 +519,7 @@ inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& center
     SurfelErrorAttributes axes;
     axes.ellipseMajorAxes = &majorAxes;
     axes.ellipseMinorAxes = &minorAxes;
+    axes.blendScale = blendScale;
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < long(count); ++i) {
         BlendingSurfel& s = surfels[i];
@@ -505,7 +527,8 @@ inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& center
         s.normal = UnitOrZero(Point3d::Construct(normals[i]));
         double major = 0, minor = 0;
         EllipseOf(axes, std::size_t(i), s.normal, major, minor, s.minorDirection);
-        SetWidths(major, minor, params.widthFactor, smallestSize, s);
+        const double scale = BlendScaleOf(axes, std::size_t(i));
+        SetWidths(scale * major, scale * minor, params.widthFactor, smallestSize, s);
     }
     return SurfelSurface(std::move(surfels), CenterTree(centersD), params.neighborCount);
 }
