@@ -283,6 +283,22 @@ TEST(ResamplingPipeline, WriteSurfelsStoresAxesAndRadius)
         EXPECT_EQ(out.vert[i].Q(), float(f.memberCount));
     }
     EXPECT_TRUE(out.bbox.IsIn(r.surfels[0].position));
+    EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute)) << "every blend scale is 1";
+}
+
+// A narrowed blend (the error bound's) is stored as SurfelBlendScale, for every surfel.
+TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
+{
+    const gstest::PointSet s = gstest::CubeSurface(24, true);
+    ResamplingParams p;
+    p.maxErrorFraction = 1e-4;
+    const ResamplingResult r = gstest::Resample(s, p);
+    ASSERT_GT(r.stats.narrowingsForSurfaceBound, 0);
+    OrientedPointMesh out;
+    WriteSurfels(r.surfels, out);
+    ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
+    auto blend = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<float>(out, kBlendScaleAttribute);
+    for (size_t i = 0; i < r.surfels.size(); ++i) EXPECT_EQ(blend[i], r.surfels[i].blendScale) << i;
 }
 
 } // namespace

@@ -19,6 +19,17 @@ grep -q "split(s) for the error bound" bounded.surfel.log
 # leaves points beyond it; narrowing the one-point surfels there meets it, and the log says so.
 grep -q "[1-9][0-9]* halving(s) of one-point surfels' axes" bounded.surfel.log
 grep -q "error bound met: every point within" bounded.surfel.log
+# The narrowed blend is saved (.surfel version 2, blend_scale at byte 56 of each 64-byte record):
+# some surfels below 1, none below 1/8.
+python3 - bounded.surfel <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+assert b"comment gaussphere-surfel 2\n" in data and b"property float blend_scale\n" in data
+body = data[data.index(b"end_header\n") + 11:]
+scales = [struct.unpack_from("<f", body, r + 56)[0] for r in range(0, len(body), 64)]
+print("blend scales: %d below 1, smallest %g" % (sum(s < 1 for s in scales), min(scales)))
+assert any(s < 1 for s in scales) and min(scales) >= 0.125 and max(scales) == 1
+PY
 loose=$(resample "$bunny" loose.surfel "$(script_with MaxError=0.01)")
 grep -q "error bound met: every point within" loose.surfel.log
 grep -q " 0 halving(s) of one-point surfels' axes" loose.surfel.log
