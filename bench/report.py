@@ -679,9 +679,10 @@ def write_control_error_bound(rows, out_dir, header):
         "`ResamplePointSet` at level n = 8 with `maxErrorFraction` = ε, 1 thread: clusters are split until "
         "every point lies within ε × diagonal of its own surfel's plane, then of the blended MLS surface of "
         "all surfels, the one the metric projects on (surface_error_bound.h): the clusters blended at a point "
-        "beyond ε are split, and one-point surfels blended there are narrowed (semi-axes halved per round, "
-        "down to 1/8). That blend rounds sharp creases and thin parts by a fraction of the sample spacing "
-        "even when every surfel is one point at its usual size (even S' = S, the *floor* row, exceeds small "
+        "beyond ε are split, and the blend weight of one-point surfels there is narrowed "
+        "(SurfelBlendScale halved per round, down to 1/8; the ellipses keep their size). That blend rounds "
+        "sharp creases and thin parts by a fraction of the sample spacing even when every surfel is one "
+        "point at its usual size (even S' = S, the *floor* row, exceeds small "
         "ε); narrowed, it follows the nearest surfel. Points left beyond ε are counted by ours and listed "
         "here. Each peer is matched to our resulting count within ±2 %.",
         "\n".join(summary_lines),

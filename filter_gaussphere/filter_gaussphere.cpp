@@ -36,7 +36,8 @@ QString FilterGaussSpherePlugin::filterInfo(FilterIDType filter) const
                "the normals vary (edges, ridges, fine detail) and sparse on flat parts.<br>"
                "The result is a new layer <i>&lt;name&gt; resampled</i> with unit normals, per-vertex "
                "radius, quality = number of input points represented, and the per-vertex attributes "
-               "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors). Save it as "
+               "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors), and with a maximum "
+               "error <i>SurfelBlendScale</i> where the blend of a surfel was narrowed. Save it as "
                "<i>.surfel</i> to keep the ellipses; PLY keeps position, normal and radius only.<br>"
                "The input needs per-vertex normals (Filters &gt; Normals, Curvatures and Orientation &gt; "
                "Compute normals for point sets); points with a zero or invalid normal are skipped.<br><br>"
@@ -229,7 +230,7 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     if (param.targetCount > 0 || param.maxErrorFraction > 0)
         Log("Gaussian sphere resampling control: level %d chosen after %d tried, %d split(s) and %d merge(s) "
             "for the target count, %d + %d split(s) for the error bound (own planes + blended surface), "
-            "%d halving(s) of one-point surfels' axes",
+            "%d halving(s) of one-point surfels' blend scales",
             s.levelUsed, s.levelsTried, s.splitsForTarget, s.mergesForTarget, s.splitsForErrorBound,
             s.splitsForSurfaceBound, s.narrowingsForSurfaceBound);
     if (param.maxErrorFraction > 0) {

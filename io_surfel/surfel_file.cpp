@@ -141,8 +141,12 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount,
     if (keyword == "comment") {
       const std::string text = afterKeyword(line);
       if (text == kSurfelFileMagic || text == kSurfelFileMagicVersion1) {
+        const std::size_t versionFloats =
+            text == kSurfelFileMagic ? kFloatPropertyCount : kFloatPropertyCountVersion1;
+        if (hasMagic && versionFloats != floatCount)
+          return fail(error, "two different .surfel versions in the PLY header");
         hasMagic = true;
-        floatCount = text == kSurfelFileMagic ? kFloatPropertyCount : kFloatPropertyCountVersion1;
+        floatCount = versionFloats;
       } else if (text.compare(0, 18, "gaussphere-surfel ") == 0) {
         return fail(error, "unsupported .surfel version '" + text + "' (this reader reads '" +
                                kSurfelFileMagic + "' and '" + kSurfelFileMagicVersion1 + "')");

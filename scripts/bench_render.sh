@@ -14,7 +14,7 @@
 #   bash scripts/bench_render.sh [--models "dragon igea"] [--views "0/15 90/20 ..."] [--bench N]
 #                                [--size PX] [--no-variations] [--out DIR] [--script NAME.mlx]
 # --script: the sample_data script that resamples (default resample_level8.mlx), e.g.
-# resample_max_error.mlx to see what the error bound's narrowed surfels cost in coverage; the
+# resample_max_error.mlx to see the coverage of the error bound's output; the
 # results then go to bench/render/<script name>/ unless --out says otherwise.
 # Environment: BUILD_DIR (default build/), DATA_DIR (default ../shared/data), PYTHON.
 # Needs the built targets `stage` and `splat_render` (it does not configure or build), Xvfb,

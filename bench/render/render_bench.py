@@ -53,6 +53,8 @@ def frame(surfel_path, mesh_path, out_path):
     d = np.zeros(len(extra), dtype=s.dtype)
     for c, name in enumerate('xyz'):
         d[name] = mp[extra, c]
+    if 'blend_scale' in (s.dtype.names or ()):
+        d['blend_scale'] = 1  # the neutral value (.surfel version 2)
     out = np.concatenate([s, d])
     for channel in ('red', 'green', 'blue'):
         if channel in out.dtype.names:

@@ -299,6 +299,9 @@ TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
     ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
     auto blend = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<float>(out, kBlendScaleAttribute);
     for (size_t i = 0; i < r.surfels.size(); ++i) EXPECT_EQ(blend[i], r.surfels[i].blendScale) << i;
+    // Written again without narrowing into the same mesh: no stale attribute (Clear() keeps them).
+    WriteSurfels(gstest::Resample(s).surfels, out);
+    EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
 }
 
 } // namespace

@@ -69,21 +69,24 @@ TEST(SurfelFile, WritesTheDocumentedHeaderAnd64BytesPerSurfel) {
 
 // Version 1 files (no blend_scale, 60 bytes per surfel) read with a blend scale of 1.
 TEST(SurfelFile, ReadsVersion1Files) {
-  std::vector<SurfelRecord> expected = syntheticSurfels(3);
+  std::vector<SurfelRecord> expected = syntheticSurfels(4);  // the fourth has a blend scale of 1/4
   const std::string v2 = encode(expected);
   const std::size_t headerSize = std::string(kHeader).size();
   std::string v1 = std::string(kHeader);
   v1.replace(v1.find("gaussphere-surfel 2"), 19, "gaussphere-surfel 1");
+  v1.replace(v1.find("vertex 3"), 8, "vertex 4");
   v1.erase(v1.find("property float blend_scale\n"), 27);
-  for (std::size_t r = 0; r < 3; ++r) {
+  for (std::size_t r = 0; r < 4; ++r) {
     const std::string record = v2.substr(headerSize + r * 64, 64);
     v1 += record.substr(0, 56) + record.substr(60, 4);  // without the blend scale
   }
   std::vector<SurfelRecord> surfels;
   std::string error;
   ASSERT_TRUE(decode(v1, surfels, error)) << error;
+  ASSERT_TRUE(surfel_io::hasBlendScales(expected));
   for (SurfelRecord& s : expected) s.blendScale = 1;
   EXPECT_EQ(surfels, expected);
+  EXPECT_FALSE(surfel_io::hasBlendScales(surfels));
   expectRefused(v1 + std::string(4, '\0'), "4 unexpected bytes after the last surfel");
 }
 
@@ -159,6 +162,9 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
   // A version 1 comment on version 2 data: the layout does not match the version.
   expectRefused(withHeaderEdit("gaussphere-surfel 2", "gaussphere-surfel 1"),
                 "unexpected 'property float blend_scale' (vertex property 15");
+  expectRefused(withHeaderEdit("comment gaussphere-surfel 2\n",
+                               "comment gaussphere-surfel 2\ncomment gaussphere-surfel 1\n"),
+                "two different .surfel versions");
   expectRefused(withHeaderEdit("end_header", "element face 0\nend_header"),
                 "unexpected 'element face 0'");
   expectRefused(withHeaderEdit("element vertex 3\n", ""), "unexpected 'property float x'");

@@ -163,6 +163,31 @@ TEST(SurfelErrorInputs, EllipseMajorAxisExtendsInfluence)
     EXPECT_NEAR(distanceWithMajorOfA(Point3f(0, 1, 0)), 0.903, 0.005);
 }
 
+// The blend scale narrows a surfel's weight only: equal ellipses, B's blend scaled by 1/4, and
+// A dominates as if B were four times smaller. Values outside (0, 1] count as 1; a scale array
+// of the wrong size is refused.
+TEST(SurfelErrorInputs, BlendScaleNarrowsTheWeight)
+{
+    PointSet surfels;
+    AddTwoParallelSurfels(surfels);
+    const std::vector<Point3f> major = {Point3f(1, 0, 0), Point3f(1, 0, 0)};
+    const std::vector<Point3f> minor = {Point3f(0, 1, 0), Point3f(0, 1, 0)};
+    const auto distanceWithScales = [&](std::vector<float> scales) {
+        SurfelErrorAttributes attributes;
+        attributes.ellipseMajorAxes = &major;
+        attributes.ellipseMinorAxes = &minor;
+        attributes.blendScale = &scales;
+        return DistanceAboveMidpoint(surfels, attributes);
+    };
+    const double symmetric = distanceWithScales({1, 1});
+    EXPECT_NEAR(symmetric, 0.9, 1e-6);
+    EXPECT_GT(distanceWithScales({1, 0.25f}), 0.96);
+    EXPECT_LT(distanceWithScales({0.25f, 1}), 0.84);
+    for (float invalid : {0.f, -1.f, 2.f, std::numeric_limits<float>::quiet_NaN()})
+        EXPECT_NEAR(distanceWithScales({1, invalid}), symmetric, 1e-9) << invalid;
+    EXPECT_THROW(distanceWithScales({1}), std::invalid_argument);
+}
+
 TEST(SurfelErrorInputs, PercentileIsNearestRank)
 {
     std::vector<double> oneToThousand;

@@ -17,7 +17,7 @@ echo "bunny: $plain surfels without a bound, $bounded with MaxError 0.0005"
 grep -q "split(s) for the error bound" bounded.surfel.log
 # Below the blend's resolution at creases and thin parts (the bunny's ears) splitting alone
 # leaves points beyond it; narrowing the one-point surfels there meets it, and the log says so.
-grep -q "[1-9][0-9]* halving(s) of one-point surfels' axes" bounded.surfel.log
+grep -q "[1-9][0-9]* halving(s) of one-point surfels' blend scales" bounded.surfel.log
 grep -q "error bound met: every point within" bounded.surfel.log
 # The narrowed blend is saved (.surfel version 2, blend_scale at byte 56 of each 64-byte record):
 # some surfels below 1, none below 1/8.
@@ -32,5 +32,5 @@ assert any(s < 1 for s in scales) and min(scales) >= 0.125 and max(scales) == 1
 PY
 loose=$(resample "$bunny" loose.surfel "$(script_with MaxError=0.01)")
 grep -q "error bound met: every point within" loose.surfel.log
-grep -q " 0 halving(s) of one-point surfels' axes" loose.surfel.log
+grep -q " 0 halving(s) of one-point surfels' blend scales" loose.surfel.log
 echo "bunny: $loose surfels with MaxError 0.01"

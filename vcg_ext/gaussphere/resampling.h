@@ -132,7 +132,7 @@ struct ResamplingStats
     int mergesForTarget = 0;       ///< cluster pairs merged to reach a targetCount below level 2's count
     int splitsForErrorBound = 0;   ///< clusters split to meet maxErrorFraction on the own surfel planes
     int splitsForSurfaceBound = 0; ///< ... and then on the blended surface (surface_error_bound.h)
-    int narrowingsForSurfaceBound = 0; ///< halvings of one-point surfels' axes for it (same file; up to 3 each)
+    int narrowingsForSurfaceBound = 0; ///< halvings of one-point surfels' blend scales for it (same file; up to 3 each)
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`

@@ -33,7 +33,10 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
     const bool narrowed =
         std::any_of(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.blendScale != 1.f; });
     typename MeshType::template PerVertexAttributeHandle<float> blend;
-    if (narrowed) blend = vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, kBlendScaleAttribute);
+    if (narrowed)
+        blend = vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, kBlendScaleAttribute);
+    else if (vcg::tri::HasPerVertexAttribute(mesh, kBlendScaleAttribute)) // Clear() keeps attributes
+        vcg::tri::Allocator<MeshType>::DeletePerVertexAttribute(mesh, kBlendScaleAttribute);
     for (const Surfel &s : surfels) {
         vi->P() = Coord::Construct(s.position);
         vi->N() = Coord::Construct(s.normal);

@@ -394,7 +394,6 @@ inline bool EllipseOf(const SurfelErrorAttributes& a, std::size_t vertex, const 
 /// ellipses keep finite weights; any positive value does when all centers coincide.
 inline double SmallestSurfelSize(const Box3d& box) { return box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0; }
 
-/// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
 /// The blend scale of vertex v of S' (SurfelErrorAttributes::blendScale), 1 when absent or invalid.
 inline double BlendScaleOf(const SurfelErrorAttributes& a, std::size_t vertex)
 {
@@ -402,6 +401,7 @@ inline double BlendScaleOf(const SurfelErrorAttributes& a, std::size_t vertex)
     return scale > 0 && scale <= 1 ? scale : 1.0;
 }
 
+/// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
 inline void SetWidths(double major, double minor, double sigma, double smallestSize, BlendingSurfel& s)
 {
     major = std::max(major, smallestSize);
