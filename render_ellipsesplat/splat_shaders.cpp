@@ -90,6 +90,7 @@ layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 majorAxis;
 layout(location = 3) in vec3 minorAxis;
 layout(location = 4) in vec4 color;
+layout(location = 5) in float blendScale;
 
 uniform mat4 modelView;
 uniform mat3 normalMatrix;
@@ -106,6 +107,7 @@ flat out vec3 dualMinor;
 flat out vec3 shadingNormal;
 flat out vec4 splatColor;
 flat out float depthOffset;
+flat out float splatBlend;
 
 const vec2 corners[4] = vec2[4](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0));
 
@@ -173,6 +175,7 @@ void main()
     dualMinor = me / dot(f, me);
     shadingNormal = normalize(backFacing ? -n : n);
     splatColor = color;
+    splatBlend = blendScale;
     depthOffset = depthOffsetFactor * sqrt(lengthSquaredE);
 }
 )";
@@ -198,8 +201,10 @@ std::string accumulationFragment()
     return std::string(kVersion) + kViewingRay + kRayEllipse + R"(
 layout(location = 0) out vec4 colorSum;       // (w·rgb, w)
 layout(location = 1) out vec4 normalDepthSum; // (w·normal, w·depth)
+flat in float splatBlend; // SurfelBlendScale: narrows the weight, not the splat
 
-// Gaussian weight over the ellipse, exp(-2) ≈ 0.14 on its border.
+// Gaussian weight over the ellipse, exp(-2) ≈ 0.14 on its border (times 1/blend² in the exponent;
+// floored so that a pixel covered only by narrowed splats keeps a weight to normalize by).
 const float gaussianFalloff = 2.0;
 
 void main()
@@ -209,7 +214,7 @@ void main()
     if (!intersectSplat(hit, direction, radiusSquared) || !windowDepth(hit, depth))
         discard;
     gl_FragDepth = depth;
-    float weight = exp(-gaussianFalloff * radiusSquared);
+    float weight = max(exp(-gaussianFalloff * radiusSquared / (splatBlend * splatBlend)), 1e-30);
     colorSum = vec4(splatColor.rgb * weight, weight);
     normalDepthSum = vec4(shadingNormal * weight, depth * weight);
 }
@@ -272,6 +277,7 @@ std::string pointVertex()
 layout(location = 0) in vec3 center;
 layout(location = 1) in vec3 normal;
 layout(location = 4) in vec4 color;
+layout(location = 5) in float blendScale;
 
 uniform mat4 modelView;
 uniform mat3 normalMatrix;

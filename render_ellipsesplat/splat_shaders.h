@@ -14,6 +14,7 @@ enum AttributeLocation
     kMajorAxis = 2,
     kMinorAxis = 3,
     kColor = 4,
+    kBlendScale = 5,
 };
 
 std::string splatVertex();        // bounding quad of each projected ellipse
