@@ -20,7 +20,6 @@ struct SplatVertex // one per splat, read with divisor 1
     float majorAxis[3];
     float minorAxis[3];
     std::uint8_t color[4];
-    float blendScale;
 };
 
 Eigen::Matrix3f normalMatrixOf(const float modelView[16])
@@ -138,7 +137,6 @@ SplatCloud::SplatCloud(const SurfelArrays &surfels, const std::uint8_t defaultCo
         }
         for (int c = 0; c < 4; ++c)
             v.color[c] = surfels.hasColors() ? surfels.colors[4 * i + c] : defaultColor[c];
-        v.blendScale = surfels.blendScale(i);
     }
 
     GLint previousVao = 0;
@@ -160,7 +158,6 @@ SplatCloud::SplatCloud(const SurfelArrays &surfels, const std::uint8_t defaultCo
     attribute(shaders::kMajorAxis, 3, GL_FLOAT, GL_FALSE, offsetof(SplatVertex, majorAxis));
     attribute(shaders::kMinorAxis, 3, GL_FLOAT, GL_FALSE, offsetof(SplatVertex, minorAxis));
     attribute(shaders::kColor, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(SplatVertex, color));
-    attribute(shaders::kBlendScale, 1, GL_FLOAT, GL_FALSE, offsetof(SplatVertex, blendScale));
 
     glBindVertexArray(GLuint(previousVao));
     glBindBuffer(GL_ARRAY_BUFFER, 0);

@@ -10,7 +10,6 @@ namespace {
 
 const char *const kMajorAxisAttribute = "EllipseMajorAxis";
 const char *const kMinorAxisAttribute = "EllipseMinorAxis";
-const char *const kBlendScaleAttribute = "SurfelBlendScale";
 
 using AxisHandle = CMeshO::PerVertexAttributeHandle<Point3m>;
 
@@ -22,14 +21,6 @@ bool findEllipseAttributes(const MeshModel &layer, AxisHandle &major, AxisHandle
     minor = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Point3m>(mesh, kMinorAxisAttribute);
     return vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, major) &&
            vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, minor);
-}
-
-// The blend scale handle, valid only when the layer has the attribute.
-bool findBlendScales(const MeshModel &layer, CMeshO::PerVertexAttributeHandle<float> &blend)
-{
-    CMeshO &mesh = const_cast<CMeshO &>(layer.cm);
-    blend = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<float>(mesh, kBlendScaleAttribute);
-    return vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, blend);
 }
 
 bool hasRadii(const MeshModel &layer)
@@ -82,8 +73,6 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
         surfels.colors.reserve(4 * count);
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
-    CMeshO::PerVertexAttributeHandle<float> blend;
-    const bool hasBlend = findBlendScales(layer, blend);
     std::vector<float> radii; // per surfel; 0 = not known, estimate from neighbours
     for (const CVertexO &v : layer.cm.vert) {
         if (v.IsD())
@@ -95,8 +84,6 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
         if (hasColors(layer))
             for (int c = 0; c < 4; ++c)
                 surfels.colors.push_back(v.cC()[c]);
-        if (hasBlend)
-            surfels.blendScales.push_back(blend[v]);
         if (hasEllipses) {
             for (int c = 0; c < 3; ++c) {
                 surfels.majorAxes.push_back(major[v][c]);
@@ -124,12 +111,10 @@ std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours)
     Fingerprint fingerprint;
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
-    CMeshO::PerVertexAttributeHandle<float> blend;
-    const bool hasBlend = findBlendScales(layer, blend);
     fingerprint.add(layer.cm.vn);
     fingerprint.add(neighbours);
     fingerprint.add(std::uint32_t(hasEllipses) | std::uint32_t(hasRadii(layer)) << 1 |
-                    std::uint32_t(hasColors(layer)) << 2 | std::uint32_t(hasBlend) << 3);
+                    std::uint32_t(hasColors(layer)) << 2);
     for (const CVertexO &v : layer.cm.vert) {
         if (v.IsD())
             continue;
@@ -143,8 +128,6 @@ std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours)
             fingerprint.add(major[v]);
             fingerprint.add(minor[v]);
         }
-        if (hasBlend)
-            fingerprint.add(blend[v]);
     }
     return fingerprint.value();
 }

@@ -90,7 +90,6 @@ layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 majorAxis;
 layout(location = 3) in vec3 minorAxis;
 layout(location = 4) in vec4 color;
-layout(location = 5) in float blendScale;
 
 uniform mat4 modelView;
 uniform mat3 normalMatrix;
@@ -107,7 +106,6 @@ flat out vec3 dualMinor;
 flat out vec3 shadingNormal;
 flat out vec4 splatColor;
 flat out float depthOffset;
-flat out float splatBlend;
 
 const vec2 corners[4] = vec2[4](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0));
 
@@ -175,7 +173,6 @@ void main()
     dualMinor = me / dot(f, me);
     shadingNormal = normalize(backFacing ? -n : n);
     splatColor = color;
-    splatBlend = blendScale;
     depthOffset = depthOffsetFactor * sqrt(lengthSquaredE);
 }
 )";
@@ -201,10 +198,8 @@ std::string accumulationFragment()
     return std::string(kVersion) + kViewingRay + kRayEllipse + R"(
 layout(location = 0) out vec4 colorSum;       // (w·rgb, w)
 layout(location = 1) out vec4 normalDepthSum; // (w·normal, w·depth)
-flat in float splatBlend; // SurfelBlendScale: narrows the weight, not the splat
 
-// Gaussian weight over the ellipse, exp(-2) ≈ 0.14 on its border (times 1/blend² in the exponent;
-// floored so that a pixel covered only by narrowed splats keeps a weight to normalize by).
+// Gaussian weight over the ellipse, exp(-2) ≈ 0.14 on its border.
 const float gaussianFalloff = 2.0;
 
 void main()
@@ -214,7 +209,7 @@ void main()
     if (!intersectSplat(hit, direction, radiusSquared) || !windowDepth(hit, depth))
         discard;
     gl_FragDepth = depth;
-    float weight = max(exp(-gaussianFalloff * radiusSquared / (splatBlend * splatBlend)), 1e-30);
+    float weight = exp(-gaussianFalloff * radiusSquared);
     colorSum = vec4(splatColor.rgb * weight, weight);
     normalDepthSum = vec4(shadingNormal * weight, depth * weight);
 }
@@ -277,7 +272,6 @@ std::string pointVertex()
 layout(location = 0) in vec3 center;
 layout(location = 1) in vec3 normal;
 layout(location = 4) in vec4 color;
-layout(location = 5) in float blendScale;
 
 uniform mat4 modelView;
 uniform mat3 normalMatrix;

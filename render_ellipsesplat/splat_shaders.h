@@ -14,7 +14,6 @@ enum AttributeLocation
     kMajorAxis = 2,
     kMinorAxis = 3,
     kColor = 4,
-    kBlendScale = 5,
 };
 
 std::string splatVertex();        // bounding quad of each projected ellipse

@@ -15,17 +15,9 @@ struct SurfelArrays
     std::vector<float> majorAxes; // semi-axis vector E per surfel, tangent to the normal
     std::vector<float> minorAxes; // semi-axis vector F per surfel, tangent, orthogonal to E
     std::vector<std::uint8_t> colors; // r g b a per surfel; empty: every splat gets the default colour
-    // Per surfel: factor in (0, 1] on the width of its blending weight only (SurfelBlendScale, set
-    // where the resampler's error bound narrowed the blend at creases); empty: every splat 1.
-    std::vector<float> blendScales;
 
     std::size_t size() const { return positions.size() / 3; }
     bool hasColors() const { return colors.size() == 4 * size(); }
-    float blendScale(std::size_t i) const
-    {
-        const float s = blendScales.size() == size() ? blendScales[i] : 1.0f;
-        return s > 0.0f && s <= 1.0f ? s : 1.0f;
-    }
 };
 
 // Radius of each point's circular splat: the distance to its k-th nearest neighbour (itself

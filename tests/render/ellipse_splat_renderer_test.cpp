@@ -186,41 +186,6 @@ TEST_F(SplatRendering, SplatsWithoutNormalsAreSkipped)
               kSize * kSize); // nothing drawn
 }
 
-// SurfelBlendScale narrows a splat's blending weight, not the splat: two overlapping discs, red
-// and blue, facing the camera. With the blue one's blend scale at 1/4 the pixels between their
-// centres turn red, and exactly the same pixels are covered.
-TEST_F(SplatRendering, BlendScaleSharpensTheBlendNotTheSplat)
-{
-    SurfelArrays discs;
-    discs.positions = {-0.3f, 0, 0, 0.3f, 0, 0};
-    discs.normals = {0, 0, 1, 0, 0, 1};
-    discs.majorAxes = {0.6f, 0, 0, 0.6f, 0, 0};
-    discs.minorAxes = {0, 0.6f, 0, 0, 0.6f, 0};
-    discs.colors.assign(kRed, kRed + 4);
-    discs.colors.insert(discs.colors.end(), kBlue, kBlue + 4);
-    const Camera front = frameBoundingSphere(CameraSetup());
-    const auto renderDiscs = [&](std::vector<float> blendScales) {
-        discs.blendScales = blendScales;
-        SplatCloud cloud(discs, kGray);
-        return renderSplats(*renderer, {&cloud}, front, kSize, kSize, SplatSettings());
-    };
-    const Frame even = renderDiscs({});
-    const Frame narrowBlue = renderDiscs({1.0f, 0.25f});
-    int covered = 0, differentCoverage = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-            covered += even.covered(x, y);
-            differentCoverage += even.covered(x, y) != narrowBlue.covered(x, y);
-        }
-    EXPECT_GT(covered, kSize * kSize / 10);
-    EXPECT_EQ(differentCoverage, 0);
-    // A quarter of the way from the midpoint towards the blue centre: still inside both discs.
-    const int x = kSize / 2 + kSize / 16, y = kSize / 2;
-    const auto redMinusBlue = [&](const Frame &f) { return qRed(f.color.pixel(x, y)) - qBlue(f.color.pixel(x, y)); };
-    EXPECT_LT(redMinusBlue(even), 0) << "nearer blue's centre, blue dominates an even blend";
-    EXPECT_GT(redMinusBlue(narrowBlue), 0) << "blue's narrowed weight has fallen below red's";
-}
-
 // A single tilted, elongated ellipse against the CPU ray caster, at sizes from small to
 // larger than the viewport (beyond any point-sprite size limit) and crossing the near plane.
 struct EllipseCase

@@ -17,7 +17,6 @@ struct VertexRecord
     float majorAxis[3];
     float minorAxis[3];
     unsigned char color[4];
-    float blendScale;
 };
 
 constexpr int kMaxPolygonVertices = 512;
@@ -74,8 +73,6 @@ PointSetFile readPointSetFile(const std::string &path)
     const bool hasEllipses =
         readAll(file, *vertexElement, {"major_x", "major_y", "major_z"}, offsetof(VertexRecord, majorAxis)) &&
         readAll(file, *vertexElement, {"minor_x", "minor_y", "minor_z"}, offsetof(VertexRecord, minorAxis));
-    const bool hasBlendScales =
-        readScalar(file, *vertexElement, "blend_scale", vcg::ply::T_FLOAT, offsetof(VertexRecord, blendScale));
     bool hasColors = true;
     const char *const channels[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; ++c)
@@ -119,8 +116,6 @@ PointSetFile readPointSetFile(const std::string &path)
                 }
                 if (hasColors)
                     s.colors.insert(s.colors.end(), v.color, v.color + 4);
-                if (hasBlendScales)
-                    s.blendScales.push_back(v.blendScale);
             }
         } else if (&file.elements[e] == faceElement && hasFaces) {
             for (int i = 0; i < count; ++i) {
