@@ -504,7 +504,7 @@ private:
         }();
         const __m256 limit = _mm256_set1_ps(bound);
         const __m256i self = _mm256_set1_epi32(i);
-        int j = 0;
+        int j = 0, kept = inside; // a local: `inside` could alias the stores, reloaded each step
         for (; j + 8 <= m; j += 8) {
             const __m256 distances = _mm256_loadu_ps(d2 + j);
             const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(id + j));
@@ -512,11 +512,12 @@ private:
             const unsigned mask =
                 unsigned(_mm256_movemask_ps(_mm256_andnot_ps(isSelf, _mm256_cmp_ps(distances, limit, _CMP_LT_OQ))));
             const __m256i order = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(frontOf[mask])));
-            // inside <= j: the eight stores stay within the arrays' first m entries.
-            _mm256_storeu_ps(near + inside, _mm256_permutevar8x32_ps(distances, order));
-            _mm256_storeu_si256(reinterpret_cast<__m256i *>(nearId + inside), _mm256_permutevar8x32_epi32(ids, order));
-            inside += __builtin_popcount(mask);
+            // kept <= j: the eight stores stay within the arrays' first m entries.
+            _mm256_storeu_ps(near + kept, _mm256_permutevar8x32_ps(distances, order));
+            _mm256_storeu_si256(reinterpret_cast<__m256i *>(nearId + kept), _mm256_permutevar8x32_epi32(ids, order));
+            kept += __builtin_popcount(mask);
         }
+        inside = kept;
         return j;
     }
 #endif
