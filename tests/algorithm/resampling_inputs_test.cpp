@@ -259,4 +259,21 @@ TEST(ResamplingInputs, CancelDuringClusterNormalization)
     EXPECT_EQ(gNormalizationReports, 2);
 }
 
+// The spatial sort before the neighbour search reports between its stages too.
+int gSortingReports = 0;
+bool CancelAtThirdSortingReport(int, const char *what)
+{
+    return std::string(what).find("sorting the points") == std::string::npos || ++gSortingReports < 3;
+}
+
+TEST(ResamplingInputs, CancelDuringTheSpatialSort)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(2000);
+    OrientedPointMesh m;
+    gstest::ToMesh(s, m);
+    gSortingReports = 0;
+    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtThirdSortingReport), ResamplingCancelled);
+    EXPECT_EQ(gSortingReports, 3);
+}
+
 } // namespace

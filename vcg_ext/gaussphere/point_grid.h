@@ -88,13 +88,20 @@ class PointGrid
 public:
     typedef vcg::Point3f Point3;
 
-    /// Precondition: finite points.
-    explicit PointGrid(const std::vector<Point3> &points, double pointsPerCell = 8.0)
+    static constexpr double kPointsPerCell = 8.0; ///< the default cell occupancy aimed at
+
+    /// Precondition: finite points. `step`, if given, is called between the stages of the
+    /// construction (seconds apart at tens of millions of points), e.g. to report progress; an
+    /// exception it throws leaves nothing behind.
+    explicit PointGrid(const std::vector<Point3> &points, double pointsPerCell = kPointsPerCell,
+                       const std::function<void()> &step = nullptr)
         : points_(points), maxGridCell_(int(std::min(64 * pointsPerCell, 1e6)))
     {
         const int n = int(points.size());
         if (n == 0) return;
+        const auto stepDone = [&step]() { if (step) step(); };
         box_ = RobustBox(points);
+        stepDone();
         FlatVector<std::pair<std::uint64_t, int>> keyed;
         keyed.reserve(n);
         for (int i = 0; i < n; ++i) {
@@ -105,7 +112,9 @@ public:
         cellSize_ = ChooseCellSize(pointsPerCell, keyed);
 #pragma omp parallel for schedule(static)
         for (int s = 0; s < inside; ++s) keyed[s].first = MortonKey(CellOf(points[keyed[s].second]));
+        stepDone();
         SortByKeyStable(keyed); // index order within a cell, as the pairs were made
+        stepDone();
         order_.resize(n);
         for (int s = 0; s < inside; ++s) order_[s] = keyed[s].second;
         std::copy(far_.begin(), far_.end(), order_.begin() + inside); // outliers last, in no cell
