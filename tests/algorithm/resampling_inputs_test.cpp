@@ -241,39 +241,40 @@ TEST(ResamplingInputs, CallbackReturningFalseCancels)
     gstest::ExpectValidResult(r, s);
 }
 
-// Cluster normalization runs for seconds on tens of millions of points: it reports after each
-// pass, not only when it starts, and a cancel there stops the run.
-int gNormalizationReports = 0;
-bool CancelAtSecondNormalizationReport(int, const char *what)
+// Long stages report between their steps, and a cancel there stops the run. The callback is
+// a plain function pointer: the stage and the report to cancel at are globals.
+const char *gCancelStage = "";
+int gCancelAtReport = 0, gStageReports = 0;
+bool CancelAtNthStageReport(int, const char *what)
 {
-    return std::string(what).find("cluster normalization") == std::string::npos || ++gNormalizationReports < 2;
+    return std::string(what).find(gCancelStage) == std::string::npos || ++gStageReports < gCancelAtReport;
 }
 
-TEST(ResamplingInputs, CancelDuringClusterNormalization)
+/// Resamples a sphere, cancelling at report `n` of the stage named `stage`; expects the run to be
+/// cancelled and returns how many of that stage's reports came.
+int StageReportsUntilCancelled(const char *stage, int n)
 {
     const gstest::PointSet s = gstest::FibonacciSphere(2000);
     OrientedPointMesh m;
     gstest::ToMesh(s, m);
-    gNormalizationReports = 0;
-    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtSecondNormalizationReport), ResamplingCancelled);
-    EXPECT_EQ(gNormalizationReports, 2);
+    gCancelStage = stage;
+    gCancelAtReport = n;
+    gStageReports = 0;
+    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtNthStageReport), ResamplingCancelled);
+    return gStageReports;
+}
+
+// Cluster normalization runs for seconds on tens of millions of points: it reports after each
+// pass, not only when it starts.
+TEST(ResamplingInputs, CancelDuringClusterNormalization)
+{
+    EXPECT_EQ(StageReportsUntilCancelled("cluster normalization", 2), 2);
 }
 
 // The spatial sort before the neighbour search reports between its stages too.
-int gSortingReports = 0;
-bool CancelAtThirdSortingReport(int, const char *what)
-{
-    return std::string(what).find("sorting the points") == std::string::npos || ++gSortingReports < 3;
-}
-
 TEST(ResamplingInputs, CancelDuringTheSpatialSort)
 {
-    const gstest::PointSet s = gstest::FibonacciSphere(2000);
-    OrientedPointMesh m;
-    gstest::ToMesh(s, m);
-    gSortingReports = 0;
-    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtThirdSortingReport), ResamplingCancelled);
-    EXPECT_EQ(gSortingReports, 3);
+    EXPECT_EQ(StageReportsUntilCancelled("sorting the points", 3), 3);
 }
 
 } // namespace
