@@ -221,7 +221,7 @@ int ProbeNeighbours(const Options &o)
     UseMmapForLargeBlocks();
     OrientedPointMesh mesh;
     GeneratePoints(GeneratorFrom(o), mesh);
-    std::vector<vcg::Point3f> points;
+    vcg::gaussphere::PointArray points;
     points.reserve(mesh.vert.size());
     for (const auto &v : mesh.vert) points.push_back(v.cP());
     const long long n = (long long)points.size();

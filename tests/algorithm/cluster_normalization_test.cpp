@@ -15,6 +15,7 @@ namespace {
 
 using namespace vcg::gaussphere;
 using gstest::P3;
+using gstest::PointArray;
 
 Clustering OneCluster(int n)
 {
@@ -96,7 +97,7 @@ TEST(ClusterNormalization, SkewStripIsCutPerpendicularToItsAxis)
     P3 along(1, 2, 2), across(2, 1, -2);
     along /= along.Norm();
     across /= across.Norm(); // orthogonal to `along`
-    std::vector<P3> pts;
+    PointArray pts;
     for (int i = 0; i < 30; ++i)
         for (int j = 0; j < 3; ++j) pts.push_back(along * float(i) + across * float(j) + P3(5, -3, 1));
     Clustering c = OneCluster(int(pts.size()));
@@ -112,7 +113,7 @@ TEST(ClusterNormalization, SkewStripIsCutPerpendicularToItsAxis)
 // (lambda2 = 0) is split once it is big enough.
 TEST(ClusterNormalization, SmallClustersAreNotSplit)
 {
-    const std::vector<P3> line = gstest::PlaneGrid(5, 1).points;
+    const PointArray line = gstest::PlaneGrid(5, 1).points;
     Clustering c = OneCluster(5);
     EXPECT_EQ(SplitElongatedClusters(line, Params(6.0, 6), c), 0);
     EXPECT_EQ(c.clusterCount, 1);
@@ -128,7 +129,7 @@ TEST(ClusterNormalization, SmallClustersAreNotSplit)
 // All members at one position: no axis, nothing to split.
 TEST(ClusterNormalization, CoincidentPointsAreNotSplit)
 {
-    const std::vector<P3> pts(20, P3(1, 1, 1));
+    const PointArray pts(20, P3(1, 1, 1));
     Clustering c = OneCluster(20);
     EXPECT_EQ(SplitElongatedClusters(pts, Params(6.0, 2), c), 0);
     EXPECT_EQ(c.clusterCount, 1);
@@ -138,7 +139,7 @@ TEST(ClusterNormalization, CoincidentPointsAreNotSplit)
 // labels are appended in the order of the clusters they come from.
 TEST(ClusterNormalization, OnlyElongatedClustersChangeAndNewLabelsAreAppended)
 {
-    std::vector<P3> pts;
+    PointArray pts;
     std::vector<int> label;
     auto add = [&](const gstest::PointSet &s, P3 offset, int l) {
         for (const P3 &p : s.points) { pts.push_back(p + offset); label.push_back(l); }
@@ -170,7 +171,7 @@ TEST(ClusterNormalization, OnlyElongatedClustersChangeAndNewLabelsAreAppended)
 // size cap, and halves keep being split while they exceed it.
 TEST(ClusterNormalization, SizeCapSplitsLargeCompactClusters)
 {
-    std::vector<vcg::Point3f> points;
+    PointArray points;
     for (int x = 0; x < 12; ++x)
         for (int y = 0; y < 12; ++y) points.push_back(vcg::Point3f(x * 0.1f, y * 0.1f, 0));
     vcg::gaussphere::Clustering c;

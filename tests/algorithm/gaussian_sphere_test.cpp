@@ -15,6 +15,7 @@ namespace {
 using vcg::gaussphere::BasePolyhedron;
 using vcg::gaussphere::GaussianSphere;
 using gstest::P3;
+using gstest::PointArray;
 
 double Det(const P3 &a, const P3 &b, const P3 &c) { return gstest::Dot(a, b ^ c); }
 
@@ -107,7 +108,7 @@ TEST_P(GaussianSphereLevels, LookupReturnsContainingTriangleAndHitsEveryId)
     std::vector<char> hit(count, 0);
     // 250k directions: about 24 per triangle at n = 24 (icosahedron), enough to land in
     // the smallest ones (their inscribed discs hold several samples).
-    const std::vector<P3> dirs = gstest::FibonacciDirections(250000);
+    const PointArray dirs = gstest::FibonacciDirections(250000);
     int outside = 0;
     for (const P3 &d : dirs) {
         const int id = s.TriangleOf(d);
@@ -181,7 +182,7 @@ TEST_P(GaussianSphereLevels, SpecialDirectionsMapToAdjacentTriangles)
 {
     const GaussianSphere s(Level(), Base());
     const float r2 = float(1 / std::sqrt(2.0)), r3 = float(1 / std::sqrt(3.0));
-    const std::vector<P3> special = {
+    const PointArray special = {
         {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
         {1, -0.f, -0.f}, {-0.f, -0.f, -1}, {-0.f, 1, -0.f},
         {r2, r2, 0}, {-r2, r2, 0}, {r2, 0, -r2}, {0, -r2, -r2},

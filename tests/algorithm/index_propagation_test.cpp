@@ -7,6 +7,8 @@
 #include <random>
 #include <set>
 
+#include <omp.h>
+
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/gaussian_sphere.h>
 #include <vcg_ext/gaussphere/index_propagation.h>
@@ -17,6 +19,7 @@ namespace {
 
 using namespace vcg::gaussphere;
 using gstest::P3;
+using gstest::PointArray;
 
 std::vector<int> Identity(int n)
 {
@@ -37,7 +40,7 @@ std::vector<std::vector<int>> PathAdjacency(int n, int cutAfter = -1)
     return adj;
 }
 
-Clustering Propagate(const std::vector<P3> &normals, const std::vector<int> &triangle, const NeighborGraph &g,
+Clustering Propagate(const PointArray &normals, const std::vector<int> &triangle, const NeighborGraph &g,
                      const std::vector<int> &seedOrder, const IndexPropagationParams &p,
                      std::vector<int> initial = {})
 {
@@ -64,7 +67,7 @@ IndexPropagationParams Params(int depth, PropagationReference ref = PropagationR
 TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
 {
     const int n = 200;
-    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const PointArray normals(n, P3(0, 0, 1));
     const std::vector<int> triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
@@ -83,7 +86,7 @@ TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
 TEST(IndexPropagation, UnlimitedDepthGivesOneClusterPerComponent)
 {
     const int n = 200;
-    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const PointArray normals(n, P3(0, 0, 1));
     const std::vector<int> triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n, 119)); // components 0..119, 120..199
     std::vector<int> order = Identity(n);
@@ -288,12 +291,40 @@ TEST_F(IndexPropagationOnBumps, DepthFirstAndBreadthFirstLabelEverything)
     }
 }
 
+// The triangles are labelled in parallel: the labels do not depend on the thread count
+// (including excluded points and both orders), and they number the clusters in the order of
+// their seeds in seedOrder, as the sequential algorithm does.
+TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSeedOrder)
+{
+    const BumpyGrid &d = Data();
+    std::vector<int> initial(d.s.Size(), 0);
+    for (int i = 0; i < d.s.Size(); i += 17) initial[i] = -1;
+    std::vector<int> positionOf(d.s.Size());
+    for (int s = 0; s < d.s.Size(); ++s) positionOf[d.seedOrder[s]] = s;
+    const int threadsBefore = omp_get_max_threads();
+    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
+        omp_set_num_threads(1);
+        const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
+                                         Params(6, PropagationReference::Seed, order), initial);
+        const std::vector<int> seed = d.Seeds(one);
+        for (int l = 1; l < one.clusterCount; ++l) EXPECT_LT(positionOf[seed[l - 1]], positionOf[seed[l]]);
+        for (int threads : {2, 3, 7}) {
+            omp_set_num_threads(threads);
+            const Clustering many = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
+                                              Params(6, PropagationReference::Seed, order), initial);
+            EXPECT_EQ(many.clusterCount, one.clusterCount) << threads << " threads";
+            EXPECT_EQ(many.label, one.label) << threads << " threads";
+        }
+    }
+    omp_set_num_threads(threadsBefore);
+}
+
 // Points pre-marked -1 are excluded: they stay -1, are never seeds, and do not carry
 // labels across (a path cut by an excluded point gives two clusters).
 TEST(IndexPropagation, ExcludedPointsStayExcluded)
 {
     const int n = 50;
-    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const PointArray normals(n, P3(0, 0, 1));
     const std::vector<int> triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
     std::vector<int> initial(n, 0);
@@ -313,7 +344,7 @@ TEST(IndexPropagation, ExcludedPointsStayExcluded)
 TEST(IndexPropagation, DifferentTrianglesNeverShareALabel)
 {
     const int n = 30;
-    const std::vector<P3> normals(n, P3(0, 0, 1));
+    const PointArray normals(n, P3(0, 0, 1));
     std::vector<int> triangle(n);
     for (int i = 0; i < n; ++i) triangle[i] = (i / 5) % 2; // runs of 5 alternate
     const Clustering c = Propagate(normals, triangle, gstest::MakeGraph(PathAdjacency(n)), Identity(n), Params(0));

@@ -15,9 +15,10 @@ namespace {
 
 using vcg::gaussphere::PointGrid;
 using gstest::P3;
+using gstest::PointArray;
 
 /// The k nearest others of point i by brute force, sorted by (distance, index).
-std::vector<std::pair<float, int>> BruteForce(const std::vector<P3> &pts, int i, int k)
+std::vector<std::pair<float, int>> BruteForce(const PointArray &pts, int i, int k)
 {
     std::vector<std::pair<float, int>> d;
     for (int j = 0; j < int(pts.size()); ++j)
@@ -29,7 +30,7 @@ std::vector<std::pair<float, int>> BruteForce(const std::vector<P3> &pts, int i,
 
 /// Every point is reported once, with exactly the brute-force neighbours in the same
 /// order (ties resolved by index), and never itself.
-void ExpectExactAllKNearest(const std::vector<P3> &pts, int k)
+void ExpectExactAllKNearest(const PointArray &pts, int k)
 {
     const PointGrid grid(pts);
     std::vector<int> calls(pts.size(), 0);
@@ -54,11 +55,11 @@ void ExpectExactAllKNearest(const std::vector<P3> &pts, int k)
     for (int i = 0; i < int(order.size()); ++i) EXPECT_EQ(order[i], i) << "Order() is a permutation";
 }
 
-std::vector<P3> SpherePoints(int n, unsigned seed)
+PointArray SpherePoints(int n, unsigned seed)
 {
     std::mt19937 rng(seed);
     std::normal_distribution<float> g(0.f, 1.f);
-    std::vector<P3> pts;
+    PointArray pts;
     for (int i = 0; i < n; ++i) {
         P3 p(g(rng), g(rng), g(rng));
         pts.push_back(p / p.Norm());
@@ -75,7 +76,7 @@ TEST(PointGrid, SurfaceSamplingMatchesBruteForce)
 // the block to grow; two lone outliers are left to the final scan of every point.
 TEST(PointGrid, UnevenDensityAndOutliersMatchBruteForce)
 {
-    std::vector<P3> pts = SpherePoints(1500, 2);
+    PointArray pts = SpherePoints(1500, 2);
     for (P3 &p : pts) p *= 0.01f;
     for (const P3 &p : SpherePoints(200, 3)) pts.push_back(p * 0.3f);
     pts.push_back(P3(50, 0, 0));
@@ -85,16 +86,16 @@ TEST(PointGrid, UnevenDensityAndOutliersMatchBruteForce)
 
 TEST(PointGrid, DuplicatesAndTinySetsMatchBruteForce)
 {
-    std::vector<P3> pts = SpherePoints(300, 4);
-    const std::vector<P3> copy = pts;
+    PointArray pts = SpherePoints(300, 4);
+    const PointArray copy = pts;
     pts.insert(pts.end(), copy.begin(), copy.end());
     for (int c = 0; c < 40; ++c) pts.push_back(copy[0]);
     ExpectExactAllKNearest(pts, 16);
-    ExpectExactAllKNearest(std::vector<P3>(25, P3(1, 2, 3)), 16); // all coincide
+    ExpectExactAllKNearest(PointArray(25, P3(1, 2, 3)), 16); // all coincide
     ExpectExactAllKNearest(SpherePoints(5, 5), 16);                // fewer than k
     ExpectExactAllKNearest(SpherePoints(1, 6), 16);                // nobody to find
     // More coincident candidates than the ranking takes: the selection path answers.
-    std::vector<P3> crowded = SpherePoints(400, 7);
+    PointArray crowded = SpherePoints(400, 7);
     for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
     ExpectExactAllKNearest(crowded, 16);
 }
@@ -104,13 +105,13 @@ TEST(PointGrid, DuplicatesAndTinySetsMatchBruteForce)
 // search must answer, beside it), and among the far outliers that bypass the grid.
 TEST(PointGrid, ManyCopiesOfOnePositionMatchBruteForce)
 {
-    std::vector<P3> crowded = SpherePoints(2000, 8);
+    PointArray crowded = SpherePoints(2000, 8);
     for (int c = 0; c < 600; ++c) crowded.push_back(crowded[0]);
     for (int c = 0; c < 15; ++c) crowded.push_back(crowded[1]); // 16 copies: k - 1 others each
     std::swap(crowded[5], crowded[2300]); // copies not only at the end of the index range
     ExpectExactAllKNearest(crowded, 16);
 
-    std::vector<P3> farCopies = SpherePoints(3500, 9);
+    PointArray farCopies = SpherePoints(3500, 9);
     for (int c = 0; c < 3; ++c) farCopies.push_back(P3(1e5f, 0, 0)); // < 0.1 %: outside the grid
     farCopies.push_back(P3(-1e5f, 0, 0));
     ExpectExactAllKNearest(farCopies, 2);
@@ -120,7 +121,7 @@ TEST(PointGrid, ManyCopiesOfOnePositionMatchBruteForce)
 // coincident) is answered by the kd-tree, exactly.
 TEST(PointGrid, DenseClumpMatchesBruteForce)
 {
-    std::vector<P3> pts = SpherePoints(2000, 10);
+    PointArray pts = SpherePoints(2000, 10);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> jitter(-1e-4f, 1e-4f);
     for (int c = 0; c < 700; ++c) pts.push_back(pts[0] + P3(jitter(rng), jitter(rng), jitter(rng)));
@@ -129,7 +130,7 @@ TEST(PointGrid, DenseClumpMatchesBruteForce)
 
 TEST(PointGrid, PlanarGridMatchesBruteForce)
 {
-    std::vector<P3> pts;
+    PointArray pts;
     for (int x = 0; x < 40; ++x)
         for (int y = 0; y < 40; ++y) pts.push_back(P3(x * 0.1f, y * 0.1f, 0));
     ExpectExactAllKNearest(pts, 16);
@@ -144,7 +145,7 @@ namespace {
 // search became quadratic), and the stray point is still answered exactly.
 TEST(PointGrid, FarOutlierDoesNotStretchTheCells)
 {
-    std::vector<P3> pts = SpherePoints(20000, 7);
+    PointArray pts = SpherePoints(20000, 7);
     pts.push_back(P3(1e5f, 0, 0));
     const PointGrid grid(pts);
     EXPECT_GT(grid.CellCount(), 20000 / 20);

@@ -13,11 +13,12 @@ namespace {
 
 using vcg::gaussphere::PointKdTree;
 using gstest::P3;
+using gstest::PointArray;
 
 struct Neighbor { float d2; int index; };
 
 /// The k nearest by brute force, sorted by (distance, index).
-std::vector<Neighbor> BruteForce(const std::vector<P3> &pts, const P3 &q, int k, int exclude)
+std::vector<Neighbor> BruteForce(const PointArray &pts, const P3 &q, int k, int exclude)
 {
     std::vector<Neighbor> all;
     for (int i = 0; i < int(pts.size()); ++i)
@@ -32,7 +33,7 @@ std::vector<Neighbor> BruteForce(const std::vector<P3> &pts, const P3 &q, int k,
 /// Checks one query: same count as brute force, ascending distances equal to brute force's
 /// (ties may pick different indices), each reported distance is the true distance of the
 /// reported index, no index twice, `exclude` never reported.
-void ExpectMatchesBruteForce(const PointKdTree &tree, const std::vector<P3> &pts, const P3 &q, int k, int exclude)
+void ExpectMatchesBruteForce(const PointKdTree &tree, const PointArray &pts, const P3 &q, int k, int exclude)
 {
     const std::vector<Neighbor> expected = BruteForce(pts, q, k, exclude);
     std::vector<int> idx(std::max(k, 1), -7);
@@ -53,18 +54,18 @@ void ExpectMatchesBruteForce(const PointKdTree &tree, const std::vector<P3> &pts
     EXPECT_TRUE(std::adjacent_find(seen.begin(), seen.end()) == seen.end()) << "an index was reported twice";
 }
 
-std::vector<P3> RandomPoints(int n, unsigned seed)
+PointArray RandomPoints(int n, unsigned seed)
 {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.f, 1.f);
-    std::vector<P3> pts(n);
+    PointArray pts(n);
     for (P3 &p : pts) p = P3(u(rng), u(rng), u(rng));
     return pts;
 }
 
 TEST(PointKdTree, RandomPointsMatchBruteForce)
 {
-    const std::vector<P3> pts = RandomPoints(3000, 1);
+    const PointArray pts = RandomPoints(3000, 1);
     const PointKdTree tree(pts);
     EXPECT_EQ(tree.Size(), 3000);
     std::mt19937 rng(2);
@@ -82,7 +83,7 @@ TEST(PointKdTree, RandomPointsMatchBruteForce)
 
 TEST(PointKdTree, QueryPointItselfComesFirstWhenNotExcluded)
 {
-    const std::vector<P3> pts = RandomPoints(500, 3);
+    const PointArray pts = RandomPoints(500, 3);
     const PointKdTree tree(pts);
     int idx[4];
     float d2[4];
@@ -97,7 +98,7 @@ TEST(PointKdTree, QueryPointItselfComesFirstWhenNotExcluded)
 // be split). Distances must still match brute force, and exclusion only drops the index.
 TEST(PointKdTree, DuplicatePointsMatchBruteForce)
 {
-    std::vector<P3> pts;
+    PointArray pts;
     for (const P3 &p : RandomPoints(400, 4))
         for (int c = 0; c < 3; ++c) pts.push_back(p);
     for (int c = 0; c < 40; ++c) pts.push_back(P3(0.25f, 0.25f, 0.25f));
@@ -119,7 +120,7 @@ TEST(PointKdTree, DuplicatePointsMatchBruteForce)
 
 TEST(PointKdTree, AllPointsIdentical)
 {
-    const std::vector<P3> pts(50, P3(1, 2, 3));
+    const PointArray pts(50, P3(1, 2, 3));
     const PointKdTree tree(pts);
     for (int i = 0; i < 50; i += 5) ExpectMatchesBruteForce(tree, pts, pts[i], 16, i);
 }
@@ -127,7 +128,7 @@ TEST(PointKdTree, AllPointsIdentical)
 // k larger than the cloud: all points come back (one fewer when one is excluded).
 TEST(PointKdTree, KLargerThanPointCount)
 {
-    const std::vector<P3> pts = RandomPoints(5, 5);
+    const PointArray pts = RandomPoints(5, 5);
     const PointKdTree tree(pts);
     ExpectMatchesBruteForce(tree, pts, pts[0], 16, -1);
     ExpectMatchesBruteForce(tree, pts, pts[0], 16, 0);
@@ -142,10 +143,10 @@ TEST(PointKdTree, DegenerateSizes)
 {
     int idx[4] = {-7, -7, -7, -7};
     float d2[4];
-    const PointKdTree empty(std::vector<P3>{});
+    const PointKdTree empty(PointArray{});
     EXPECT_EQ(empty.Size(), 0);
     EXPECT_EQ(empty.KNearest(P3(0, 0, 0), 4, -1, idx, d2), 0);
-    const PointKdTree one(std::vector<P3>{P3(1, 1, 1)});
+    const PointKdTree one(PointArray{P3(1, 1, 1)});
     EXPECT_EQ(one.KNearest(P3(0, 0, 0), 4, -1, idx, d2), 1);
     EXPECT_EQ(idx[0], 0);
     EXPECT_FLOAT_EQ(d2[0], 3.f);
@@ -157,7 +158,7 @@ TEST(PointKdTree, DegenerateSizes)
 // two axes and a zero extent on the third).
 TEST(PointKdTree, PlanarGridMatchesBruteForce)
 {
-    const std::vector<P3> pts = gstest::PlaneGrid(40, 25, 0.5f).points;
+    const PointArray pts = gstest::PlaneGrid(40, 25, 0.5f).points;
     for (int leaf : {1, 3, 12, 64}) {
         const PointKdTree tree(pts, leaf);
         for (int i = 0; i < int(pts.size()); i += 23) ExpectMatchesBruteForce(tree, pts, pts[i], 16, i);

@@ -16,6 +16,7 @@ namespace {
 
 using namespace vcg::gaussphere;
 using gstest::P3;
+using gstest::PointArray;
 
 P3 Tilted(double degrees)
 {
@@ -39,7 +40,7 @@ Clustering Labels(const std::vector<int> &label)
 // uses the cluster normal, so the singleton joins cluster 2.
 TEST(SingletonRejoining, JoinsTheClusterWithTheClosestMeanNormal)
 {
-    const std::vector<P3> normals = {Tilted(0), Tilted(0), Tilted(60), Tilted(10), Tilted(10)};
+    const PointArray normals = {Tilted(0), Tilted(0), Tilted(60), Tilted(10), Tilted(10)};
     const NeighborGraph g = gstest::MakeGraph({{1, 2, 3, 4}, {2}, {1}, {4}, {3}});
     Clustering c = Labels({0, 1, 1, 2, 2});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 1);
@@ -54,7 +55,7 @@ TEST(SingletonRejoining, JoinsTheClusterWithTheClosestMeanNormal)
 // choice follows the normals, not the label order or the neighbour order.
 TEST(SingletonRejoining, ChoiceFollowsNormalsNotOrder)
 {
-    const std::vector<P3> normals = {Tilted(0), Tilted(5), Tilted(5), Tilted(-20), Tilted(-20)};
+    const PointArray normals = {Tilted(0), Tilted(5), Tilted(5), Tilted(-20), Tilted(-20)};
     const NeighborGraph g = gstest::MakeGraph({{3, 4, 1, 2}, {2}, {1}, {4}, {3}});
     Clustering c = Labels({0, 1, 1, 2, 2});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 1);
@@ -65,7 +66,7 @@ TEST(SingletonRejoining, ChoiceFollowsNormalsNotOrder)
 // other (two singletons could otherwise swap labels).
 TEST(SingletonRejoining, SingletonsWithOnlySingletonNeighboursStay)
 {
-    const std::vector<P3> normals = {Tilted(0), Tilted(1), Tilted(2)};
+    const PointArray normals = {Tilted(0), Tilted(1), Tilted(2)};
     const NeighborGraph g = gstest::MakeGraph({{1, 2}, {0, 2}, {0, 1}});
     Clustering c = Labels({0, 1, 2});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
@@ -77,7 +78,7 @@ TEST(SingletonRejoining, SingletonsWithOnlySingletonNeighboursStay)
 // stays. The repeated passes then let A follow B.
 TEST(SingletonRejoining, OnePassUsesThePreviousClusteringAndPassesRepeat)
 {
-    const std::vector<P3> normals(5, Tilted(0));
+    const PointArray normals(5, Tilted(0));
     const NeighborGraph g = gstest::MakeGraph({{1}, {0, 2}, {3, 1}, {2}, {0}});
     Clustering once = Labels({0, 1, 2, 2, 3});
     EXPECT_EQ(RejoinSingletonsOnce(normals, g, kChord, once), 1);
@@ -93,7 +94,7 @@ TEST(SingletonRejoining, OnePassUsesThePreviousClusteringAndPassesRepeat)
 // joined (15 degrees is a chord of 0.26); with a wider cone it is.
 TEST(SingletonRejoining, ClustersOutsideTheConeAreNotJoined)
 {
-    const std::vector<P3> normals = {Tilted(0), Tilted(15), Tilted(15)};
+    const PointArray normals = {Tilted(0), Tilted(15), Tilted(15)};
     const NeighborGraph g = gstest::MakeGraph({{1, 2}, {2}, {1}});
     Clustering narrow = Labels({0, 1, 1});
     EXPECT_EQ(RejoinSingletons(normals, g, 0.25, narrow), 0);
@@ -107,7 +108,7 @@ TEST(SingletonRejoining, ClustersOutsideTheConeAreNotJoined)
 // singleton join it; only the singleton's own neighbourhood N(p) counts.
 TEST(SingletonRejoining, OnlyTheSingletonsOwnNeighbourhoodCounts)
 {
-    const std::vector<P3> normals(3, Tilted(0));
+    const PointArray normals(3, Tilted(0));
     const NeighborGraph g = gstest::MakeGraph({{}, {0, 2}, {1, 0}});
     Clustering c = Labels({0, 1, 1});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
@@ -117,7 +118,7 @@ TEST(SingletonRejoining, OnlyTheSingletonsOwnNeighbourhoodCounts)
 // Excluded points (-1) are neither moved nor used as targets.
 TEST(SingletonRejoining, ExcludedPointsAreIgnored)
 {
-    const std::vector<P3> normals(4, Tilted(0));
+    const PointArray normals(4, Tilted(0));
     const NeighborGraph g = gstest::MakeGraph({{1, 2}, {0, 2}, {0, 1}, {0}});
     Clustering c = Labels({0, -1, -1, 1});
     c.clusterCount = 2;
@@ -128,7 +129,7 @@ TEST(SingletonRejoining, ExcludedPointsAreIgnored)
 // Equal scores: the smaller label wins (a deterministic tie-break).
 TEST(SingletonRejoining, TiesGoToTheSmallerLabel)
 {
-    const std::vector<P3> normals = {Tilted(0), Tilted(10), Tilted(10), Tilted(10), Tilted(10)};
+    const PointArray normals = {Tilted(0), Tilted(10), Tilted(10), Tilted(10), Tilted(10)};
     Clustering c = Labels({0, 2, 2, 1, 1});
     EXPECT_EQ(RejoinSingletons(normals, gstest::MakeGraph({{1, 2, 3, 4}, {2}, {1}, {4}, {3}}), kChord, c), 1);
     EXPECT_EQ(c.label[0], 1);

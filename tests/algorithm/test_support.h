@@ -17,13 +17,14 @@
 namespace gstest {
 
 typedef vcg::Point3f P3;
+using vcg::gaussphere::PointArray;
 const double kPi = 3.14159265358979323846;
 
 /// An oriented point set as two parallel arrays, plus an optional per-point tag
 /// (e.g. the cube face a point was sampled on).
 struct PointSet
 {
-    std::vector<P3> points, normals;
+    vcg::gaussphere::PointArray points, normals;
     std::vector<int> tag;
 
     void Add(const P3 &p, const P3 &n, int t = 0)
@@ -59,7 +60,7 @@ inline PointSet FibonacciSphere(int n, float radius = 1.f)
 }
 
 /// Unit directions spread evenly over the sphere (for probing the Gaussian sphere).
-inline std::vector<P3> FibonacciDirections(int n)
+inline PointArray FibonacciDirections(int n)
 {
     return FibonacciSphere(n).normals;
 }

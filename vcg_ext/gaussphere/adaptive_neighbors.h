@@ -69,7 +69,7 @@ inline float ConeMinDot(double chord) { return float(1.0 - 0.5 * chord * chord);
 /// Writes the neighbours `ordered[0, found)` of point i into `slot`: those q with
 /// <n_i, n_q> >= minDot first, then the others, each group in its given order. Returns
 /// the number kept. `ordered` and `slot` must not overlap.
-inline int PartitionByCone(const std::vector<vcg::Point3f> &normals, int i, float minDot, const int *ordered,
+inline int PartitionByCone(const PointArray &normals, int i, float minDot, const int *ordered,
                            int found, int *slot)
 {
     int kept = 0, dropped = 0;
@@ -85,7 +85,7 @@ inline int PartitionByCone(const std::vector<vcg::Point3f> &normals, int i, floa
 /// Orders each point's slots canonically: the neighbours q with |n_p - n_q| <= chord
 /// first, then the others, each group by increasing (distance, index); sets count. The
 /// result depends only on the chord, not on earlier calls.
-inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+inline void RestrictToCone(const PointArray &points, const PointArray &normals,
                            double chord, NeighborGraph &g)
 {
     if (chord == g.chord) return;
@@ -120,8 +120,8 @@ inline void RestrictToCone(const std::vector<vcg::Point3f> &points, const std::v
 /// result does not depend on the thread count.
 /// `progress` as in PointGrid::ForAllKNearest; if it stops the search, the graph is
 /// returned empty (Size() == 0).
-inline NeighborGraph BuildAdaptiveNeighbors(const std::vector<vcg::Point3f> &points,
-                                            const std::vector<vcg::Point3f> &normals,
+inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
+                                            const PointArray &normals,
                                             const AdaptiveNeighborParams &param,
                                             const PointGrid &grid,
                                             const std::function<bool(double)> &progress = nullptr)

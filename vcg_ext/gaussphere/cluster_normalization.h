@@ -20,6 +20,7 @@
 #include <vcg/space/point3.h>
 
 #include "clustering.h"
+#include "flat_vector.h"
 #include "principal_axes.h"
 
 namespace vcg {
@@ -38,7 +39,7 @@ struct ClusterNormalizationParams
 
 /// One splitting pass over all clusters. Returns the number of clusters split.
 /// Deterministic: new labels are numbered in the order of the clusters they come from.
-inline int SplitElongatedClusters(const std::vector<vcg::Point3f> &points, const ClusterNormalizationParams &param,
+inline int SplitElongatedClusters(const PointArray &points, const ClusterNormalizationParams &param,
                                   Clustering &clusters)
 {
     const ClusterMembers members(clusters);

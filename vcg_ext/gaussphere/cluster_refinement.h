@@ -45,7 +45,7 @@ class ClusterRefiner
 {
 public:
     /// invH2 = 1/h^2 of the surfel normal weights (SurfelGenerationParams::weightWidth).
-    ClusterRefiner(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+    ClusterRefiner(const PointArray &points, const PointArray &normals,
                    Clustering &clusters, double invH2)
         : points_(points), normals_(normals), clusters_(clusters), invH2_(invH2)
     {
@@ -145,7 +145,7 @@ private:
         return worst;
     }
 
-    const std::vector<vcg::Point3f> &points_, &normals_;
+    const PointArray &points_, &normals_;
     Clustering &clusters_;
     double invH2_;
     std::vector<int> index_;
@@ -164,7 +164,7 @@ constexpr double kMergeSpreadWeight = 0.1;
 /// Merges neighbouring clusters, cheapest first, until `target` remain (or no two
 /// clusters are linked by `graph`, using every neighbour found, not only the cone).
 /// Returns the number of merges; clusters are compacted afterwards.
-inline int MergeToCount(const std::vector<vcg::Point3f> &points, const std::vector<vcg::Point3f> &normals,
+inline int MergeToCount(const PointArray &points, const PointArray &normals,
                         const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters)
 {
     const int count = clusters.clusterCount;

@@ -28,7 +28,7 @@ namespace gaussphere {
 /// Per point: 1 when one of its neighbours in `graph` (all of the k nearest, inside the
 /// cone of normals or not) has a normal between `creaseAngleDegrees` and 120 degrees away
 /// from its own, else 0. Preconditions: unit normals; 0 < creaseAngleDegrees < 120.
-inline std::vector<char> MarkCreasePoints(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+inline std::vector<char> MarkCreasePoints(const PointArray &normals, const NeighborGraph &graph,
                                           double creaseAngleDegrees)
 {
     const double degree = std::acos(-1.0) / 180.0;

@@ -14,9 +14,13 @@
 #ifndef VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 #define VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <vector>
+
+#include <omp.h>
 
 #include <vcg/space/point3.h>
 
@@ -38,50 +42,110 @@ struct IndexPropagationParams
 };
 
 /// Labels every point whose `clusters.label` is not -1 (points pre-marked -1 are
-/// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i; seeds are
-/// taken in `seedOrder` (a permutation of the points). Postcondition: every non-excluded
-/// point has a label in [0, clusterCount); points of one cluster share a triangle.
-/// `progress(fraction)` is called now and then; when it returns false labelling stops
-/// and the function returns false (the clustering is then incomplete).
-inline bool PropagateIndices(const std::vector<vcg::Point3f> &normals, const std::vector<int> &triangle,
+/// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i (>= 0 for every
+/// point, excluded ones included); seeds
+/// are taken in `seedOrder` (a permutation of the points). Postcondition: every non-excluded
+/// point has a label in [0, clusterCount); points of one cluster share a triangle; labels
+/// number the clusters in the order of their seeds in seedOrder.
+/// `progress(fraction)` is called now and then from the calling thread; when it returns
+/// false labelling stops and the function returns false (the clustering is then incomplete).
+///
+/// Parallel, with the result of the sequential algorithm: a label only spreads to points of
+/// its seed's triangle, so the triangles are independent of each other. Each thread labels
+/// the triangles it owns, taking their seeds in seedOrder (one sweep over it per thread keeps
+/// the accesses as local as the sequential pass's); the labels are then numbered by the seeds'
+/// positions in seedOrder, as a sequential pass over all seeds numbers them.
+inline bool PropagateIndices(const PointArray &normals, const std::vector<int> &triangle,
                              const NeighborGraph &graph, const std::vector<int> &seedOrder,
                              const IndexPropagationParams &param, Clustering &clusters,
                              const std::function<bool(double)> &progress = nullptr)
 {
     const int unlabelled = -2;
-    for (int &l : clusters.label) l = (l == -1) ? -1 : unlabelled;
+    const int n = int(clusters.label.size());
+    int *label = clusters.label.data();
+    int triangleCount = 0;
+#pragma omp parallel for schedule(static) reduction(max : triangleCount)
+    for (int i = 0; i < n; ++i) {
+        label[i] = label[i] == -1 ? -1 : unlabelled;
+        triangleCount = std::max(triangleCount, triangle[i] + 1);
+    }
+
+    // Each thread takes whole triangles: the counts' greedy balance, largest first.
+    std::vector<long long> count(size_t(triangleCount), 0);
+    for (int i = 0; i < n; ++i)
+        if (label[i] != -1) ++count[size_t(triangle[i])];
+    std::vector<int> byCount(triangleCount);
+    for (int t = 0; t < triangleCount; ++t) byCount[t] = t;
+    std::stable_sort(byCount.begin(), byCount.end(), [&](int a, int b) { return count[a] > count[b]; });
+    const int threads = std::max(1, omp_get_max_threads());
+    std::vector<long long> load(threads, 0);
+    std::vector<int> owner(size_t(triangleCount), 0);
+    for (int t : byCount) {
+        const int least = int(std::min_element(load.begin(), load.end()) - load.begin());
+        owner[t] = least;
+        load[least] += count[t];
+    }
+
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
-    struct Visit { int point; int depth; };
-    // One vector serves both orders: a stack popped at the back, or a queue read from
-    // `head` (cleared when a seed's cluster is complete).
-    std::vector<Visit> pending;
-    size_t head = 0;
-    int next = 0;
-    const size_t reportEvery = std::max<size_t>(1, seedOrder.size() / 50);
-    for (size_t s = 0; s < seedOrder.size(); ++s) {
-        if (progress && s % reportEvery == 0 && !progress(double(s) / seedOrder.size())) return false;
-        const int seed = seedOrder[s];
-        if (clusters.label[seed] != unlabelled) continue;
-        const int id = next++;
-        clusters.label[seed] = id;
-        pending.clear();
-        head = 0;
-        pending.push_back({seed, 0});
-        while (head < pending.size()) {
-            Visit v;
-            if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
-            else v = pending[head++];
-            if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
-            const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
-            for (const int *q = graph.begin(v.point); q != graph.end(v.point); ++q) {
-                const int j = *q;
-                if (clusters.label[j] != unlabelled || triangle[j] != triangle[seed]) continue;
-                if ((normals[j] - ref).SquaredNorm() > maxChord2) continue;
-                clusters.label[j] = id;
-                pending.push_back({j, v.depth + 1});
+    const int seedCount = int(seedOrder.size());
+    const int reportEvery = std::max(1, seedCount / 50);
+    std::atomic<bool> cancelled(false);
+#pragma omp parallel num_threads(threads)
+    {
+        // Only the calling thread (OpenMP's master) talks to the caller's callback.
+        const int self = omp_get_thread_num();
+        const bool reporter = self == 0;
+        struct Visit { int point; int depth; };
+        // One vector serves both orders: a stack popped at the back, or a queue read from
+        // `head` (cleared when a seed's cluster is complete).
+        std::vector<Visit> pending;
+        // Every thread walks all of seedOrder, so that each triangle's seeds come in its order.
+        for (int position = 0; position < seedCount; ++position) {
+            if (position % reportEvery == 0) {
+                if (cancelled.load(std::memory_order_relaxed)) break;
+                if (reporter && progress && !progress(double(position) / seedCount)) {
+                    cancelled = true;
+                    break;
+                }
+            }
+            const int seed = seedOrder[position];
+            const int t = triangle[seed];
+            // The owner first: the labels of other triangles' points are other threads' to write.
+            if (owner[t] != self || label[seed] != unlabelled) continue;
+            // Provisional label: the seed's position, unique per cluster; numbered below.
+            label[seed] = position;
+            pending.clear();
+            size_t head = 0;
+            pending.push_back({seed, 0});
+            while (head < pending.size()) {
+                Visit v;
+                if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
+                else v = pending[head++];
+                if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
+                const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
+                for (const int *q = graph.begin(v.point); q != graph.end(v.point); ++q) {
+                    const int j = *q;
+                    if (triangle[j] != t || label[j] != unlabelled) continue;
+                    if ((normals[j] - ref).SquaredNorm() > maxChord2) continue;
+                    label[j] = position;
+                    pending.push_back({j, v.depth + 1});
+                }
             }
         }
     }
+    if (cancelled) return false;
+
+    // Number the clusters by their seeds' positions in seedOrder.
+    FlatVector<int> idOfPosition(seedOrder.size());
+    int next = 0;
+    for (int s = 0; s < int(seedOrder.size()); ++s) {
+        const int l = label[seedOrder[s]];
+        idOfPosition[s] = next;
+        next += int(l == s);
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i)
+        if (label[i] >= 0) label[i] = idOfPosition[label[i]];
     clusters.clusterCount = next;
     return true;
 }

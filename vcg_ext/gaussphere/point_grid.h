@@ -93,7 +93,7 @@ public:
     /// Precondition: finite points. `step`, if given, is called between the stages of the
     /// construction (seconds apart at tens of millions of points), e.g. to report progress; an
     /// exception it throws leaves nothing behind.
-    explicit PointGrid(const std::vector<Point3> &points, double pointsPerCell = kPointsPerCell,
+    explicit PointGrid(const PointArray &points, double pointsPerCell = kPointsPerCell,
                        const std::function<void()> &step = nullptr)
         : points_(points), maxGridCell_(int(std::min(64 * pointsPerCell, 1e6)))
     {
@@ -322,7 +322,7 @@ private:
     /// Grid box: the 0.1 % to 99.9 % quantiles of each coordinate, grown by half their
     /// extent on each side. Points outside (stray scanner returns far from the model) stay
     /// out of the grid, so that they cannot stretch its cells; the kd-tree answers them.
-    static vcg::Box3f RobustBox(const std::vector<Point3> &points)
+    static vcg::Box3f RobustBox(const PointArray &points)
     {
         const size_t n = points.size();
         vcg::Box3f box;
@@ -679,7 +679,7 @@ private:
         return std::max(0.0, margin);
     }
 
-    const std::vector<Point3> &points_;
+    const PointArray &points_;
     vcg::Box3f box_;
     double cellSize_ = 1.0;
     int maxGridCell_; // cells with more points go to the kd-tree, after their copies

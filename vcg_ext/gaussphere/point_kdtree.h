@@ -16,6 +16,8 @@
 
 #include <vcg/space/point3.h>
 
+#include "flat_vector.h"
+
 namespace vcg {
 namespace gaussphere {
 
@@ -25,7 +27,7 @@ public:
     typedef vcg::Point3f Point3;
 
     /// Builds the tree over `points` (copied). Precondition: points are finite.
-    explicit PointKdTree(const std::vector<Point3> &points, int leafSize = 12)
+    explicit PointKdTree(const PointArray &points, int leafSize = 12)
         : leafSize_(std::max(1, leafSize))
     {
         const int n = int(points.size());
@@ -101,7 +103,7 @@ private:
         int begin, end;
     };
 
-    void Build(const std::vector<Point3> &points, int begin, int end)
+    void Build(const PointArray &points, int begin, int end)
     {
         const int self = int(nodes_.size());
         nodes_.push_back(Node{-1, 0.f, -1, begin, end});

@@ -24,7 +24,7 @@ namespace vcg {
 namespace gaussphere {
 
 /// One pass; returns the number of singletons that joined a neighbouring cluster.
-inline int RejoinSingletonsOnce(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+inline int RejoinSingletonsOnce(const PointArray &normals, const NeighborGraph &graph,
                                 double maxChord, Clustering &clusters)
 {
     const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
@@ -62,7 +62,7 @@ inline int RejoinSingletonsOnce(const std::vector<vcg::Point3f> &normals, const 
 
 /// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
 /// Postcondition: clusters may contain empty labels; call Compact() when needed.
-inline int RejoinSingletons(const std::vector<vcg::Point3f> &normals, const NeighborGraph &graph,
+inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph,
                             double maxChord, Clustering &clusters, int maxPasses = 32)
 {
     int joined = 0;

@@ -66,8 +66,8 @@ struct SurfaceErrorBoundResult
 /// \pre points and normals (unit) as given to the refiner; spacing as for GenerateSurfels;
 ///      maxDistance > 0; the points' bounding-box diagonal `diagonal` > 0.
 /// \post Deterministic: the result does not depend on the thread count.
-inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const std::vector<vcg::Point3f> &points,
-                                                        const std::vector<vcg::Point3f> &normals,
+inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points,
+                                                        const PointArray &normals,
                                                         const std::vector<float> &spacing,
                                                         const SurfelGenerationParams &surfelParam,
                                                         double maxDistance, double diagonal, int maxRounds,

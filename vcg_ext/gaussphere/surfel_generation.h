@@ -34,6 +34,7 @@
 #include <vcg/space/point3.h>
 
 #include "clustering.h"
+#include "flat_vector.h"
 #include "principal_axes.h"
 
 namespace vcg {
@@ -102,8 +103,8 @@ struct ClusterFrame
 };
 
 /// The frame of the points index[begin, end) (non-empty). invH2 = 1/h^2 of the weights.
-inline ClusterFrame ComputeClusterFrame(const std::vector<vcg::Point3f> &points,
-                                        const std::vector<vcg::Point3f> &normals, const int *begin,
+inline ClusterFrame ComputeClusterFrame(const PointArray &points,
+                                        const PointArray &normals, const int *begin,
                                         const int *end, double invH2)
 {
     using detail::ToEigen;
@@ -168,8 +169,8 @@ inline ClusterFrame ComputeClusterFrame(const std::vector<vcg::Point3f> &points,
 
 /// One surfel per cluster, in cluster order. `spacing` is the per-point local sample
 /// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
-inline std::vector<Surfel> GenerateSurfels(const std::vector<vcg::Point3f> &points,
-                                           const std::vector<vcg::Point3f> &normals,
+inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
+                                           const PointArray &normals,
                                            const std::vector<float> &spacing, const Clustering &clusters,
                                            const SurfelGenerationParams &param)
 {
