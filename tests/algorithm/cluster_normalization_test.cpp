@@ -16,6 +16,7 @@ namespace {
 using namespace vcg::gaussphere;
 using gstest::P3;
 using gstest::PointArray;
+using gstest::IndexArray;
 
 Clustering OneCluster(int n)
 {
@@ -140,7 +141,7 @@ TEST(ClusterNormalization, CoincidentPointsAreNotSplit)
 TEST(ClusterNormalization, OnlyElongatedClustersChangeAndNewLabelsAreAppended)
 {
     PointArray pts;
-    std::vector<int> label;
+    IndexArray label;
     auto add = [&](const gstest::PointSet &s, P3 offset, int l) {
         for (const P3 &p : s.points) { pts.push_back(p + offset); label.push_back(l); }
     };
@@ -196,7 +197,7 @@ int SplitsOfSquare(const ClusterNormalizationParams &base, bool atCrease)
 {
     const gstest::PointSet s = gstest::PlaneGrid(6, 6);
     Clustering c = OneCluster(s.Size());
-    std::vector<char> crease(s.Size(), 0);
+    vcg::gaussphere::FlatVector<char> crease(s.Size(), 0);
     crease[0] = atCrease;
     ClusterNormalizationParams p = base;
     p.creasePoints = &crease;

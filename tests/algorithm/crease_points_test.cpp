@@ -30,7 +30,7 @@ gstest::PointSet Fold(double foldDegrees)
     return s;
 }
 
-std::vector<char> Mark(const gstest::PointSet &s, double angle)
+FlatVector<char> Mark(const gstest::PointSet &s, double angle)
 {
     const PointGrid grid(s.points);
     AdaptiveNeighborParams p;
@@ -45,7 +45,7 @@ float FromFold(const gstest::PointSet &s, int i) { return std::hypot(s.points[i]
 TEST(CreasePoints, SharpFoldMarksTheBandAlongTheEdgeOnly)
 {
     const gstest::PointSet s = Fold(90);
-    const std::vector<char> crease = Mark(s, 45);
+    const FlatVector<char> crease = Mark(s, 45);
     int marked = 0;
     for (int i = 0; i < s.Size(); ++i) {
         if (FromFold(s, i) < 0.1f) EXPECT_TRUE(crease[i]) << "point " << i << " next to the edge";
@@ -58,10 +58,10 @@ TEST(CreasePoints, SharpFoldMarksTheBandAlongTheEdgeOnly)
 TEST(CreasePoints, GentleFoldIsNoCrease)
 {
     const gstest::PointSet s = Fold(30);
-    const std::vector<char> crease = Mark(s, 45);
+    const FlatVector<char> crease = Mark(s, 45);
     for (int i = 0; i < s.Size(); ++i) EXPECT_FALSE(crease[i]) << "point " << i;
     // The same fold is a crease for a smaller angle.
-    const std::vector<char> fine = Mark(s, 20);
+    const FlatVector<char> fine = Mark(s, 20);
     EXPECT_TRUE(fine[0]) << "the points next to the edge turn by 30 degrees";
 }
 
@@ -73,7 +73,7 @@ TEST(CreasePoints, OppositeSheetsOfAThinPartAreNoCrease)
             s.Add(P3(0.1f * i, 0.1f * j, 0.f), P3(0, 0, -1));
             s.Add(P3(0.1f * i, 0.1f * j, 0.02f), P3(0, 0, 1));
         }
-    const std::vector<char> crease = Mark(s, 45);
+    const FlatVector<char> crease = Mark(s, 45);
     for (int i = 0; i < s.Size(); ++i) EXPECT_FALSE(crease[i]) << "point " << i;
 }
 

@@ -151,7 +151,7 @@ TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
     for (int rounds : {1, 3}) {
         SCOPED_TRACE(rounds);
         Clustering clusters;
-        clusters.label = plain.representative;
+        clusters.label.assign(plain.representative.begin(), plain.representative.end());
         clusters.clusterCount = int(plain.surfels.size());
         ClusterRefiner refiner(s.points, s.normals, clusters, 1.0 / (surfelParam.weightWidth * surfelParam.weightWidth));
         const SurfaceErrorBoundResult r = SplitToSurfaceErrorBound(s.points, s.normals, graph.spacing, surfelParam,
@@ -160,7 +160,7 @@ TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
         EXPECT_EQ(r.narrowings > 0, rounds > 1);
         ResamplingResult capped;
         capped.surfels = r.surfels;
-        capped.representative = clusters.label;
+        capped.representative.assign(clusters.label.begin(), clusters.label.end());
         const Measured m = Measure(s, capped);
         const int above =
             int(std::count_if(m.distance.begin(), m.distance.end(), [&](float d) { return d > bound; }));

@@ -20,10 +20,11 @@ namespace {
 using namespace vcg::gaussphere;
 using gstest::P3;
 using gstest::PointArray;
+using gstest::IndexArray;
 
-std::vector<int> Identity(int n)
+IndexArray Identity(int n)
 {
-    std::vector<int> v(n);
+    IndexArray v(n);
     std::iota(v.begin(), v.end(), 0);
     return v;
 }
@@ -40,12 +41,12 @@ std::vector<std::vector<int>> PathAdjacency(int n, int cutAfter = -1)
     return adj;
 }
 
-Clustering Propagate(const PointArray &normals, const std::vector<int> &triangle, const NeighborGraph &g,
-                     const std::vector<int> &seedOrder, const IndexPropagationParams &p,
-                     std::vector<int> initial = {})
+Clustering Propagate(const PointArray &normals, const IndexArray &triangle, const NeighborGraph &g,
+                     const IndexArray &seedOrder, const IndexPropagationParams &p,
+                     IndexArray initial = {})
 {
     Clustering c;
-    c.label = initial.empty() ? std::vector<int>(normals.size(), 0) : initial;
+    c.label = initial.empty() ? IndexArray(normals.size(), 0) : initial;
     PropagateIndices(normals, triangle, g, seedOrder, p, c);
     return c;
 }
@@ -68,7 +69,7 @@ TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
 {
     const int n = 200;
     const PointArray normals(n, P3(0, 0, 1));
-    const std::vector<int> triangle(n, 0);
+    const IndexArray triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
         EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(1, PropagationReference::Seed, order)).clusterCount, 100);
@@ -87,9 +88,9 @@ TEST(IndexPropagation, UnlimitedDepthGivesOneClusterPerComponent)
 {
     const int n = 200;
     const PointArray normals(n, P3(0, 0, 1));
-    const std::vector<int> triangle(n, 0);
+    const IndexArray triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n, 119)); // components 0..119, 120..199
-    std::vector<int> order = Identity(n);
+    IndexArray order = Identity(n);
     std::shuffle(order.begin(), order.end(), std::mt19937(3));
     const Clustering c = Propagate(normals, triangle, g, order, Params(0));
     ASSERT_EQ(c.clusterCount, 2);
@@ -108,7 +109,7 @@ TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
     AdaptiveNeighborParams ap;
     ap.k = 8;
     const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
-    const std::vector<int> triangle(s.Size(), 5);
+    const IndexArray triangle(s.Size(), 5);
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
         const int c1 = Propagate(s.normals, triangle, g, tree.Order(), Params(1, PropagationReference::Seed, order)).clusterCount;
         const int c6 = Propagate(s.normals, triangle, g, tree.Order(), Params(6, PropagationReference::Seed, order)).clusterCount;
@@ -128,9 +129,9 @@ TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
 struct BumpyGrid
 {
     gstest::PointSet s;
-    std::vector<int> triangle;
+    IndexArray triangle;
     NeighborGraph graph;
-    std::vector<int> seedOrder;
+    IndexArray seedOrder;
 
     BumpyGrid()
     {
@@ -155,9 +156,9 @@ struct BumpyGrid
 
     /// The seed of each cluster: the first point of seedOrder carrying its label (every
     /// point before a seed in seedOrder was labelled earlier, so it has a smaller label).
-    std::vector<int> Seeds(const Clustering &c) const
+    IndexArray Seeds(const Clustering &c) const
     {
-        std::vector<int> seed(c.clusterCount, -1);
+        IndexArray seed(c.clusterCount, -1);
         for (int p : seedOrder)
             if (c.label[p] >= 0 && seed[c.label[p]] < 0) seed[c.label[p]] = p;
         return seed;
@@ -165,9 +166,9 @@ struct BumpyGrid
 
     /// Hops from the cluster's seed to each member along graph edges between members
     /// (-1: not reachable inside the cluster).
-    std::vector<int> HopsFromSeed(const Clustering &c) const
+    IndexArray HopsFromSeed(const Clustering &c) const
     {
-        std::vector<int> hops(s.Size(), -1);
+        IndexArray hops(s.Size(), -1);
         std::deque<int> queue;
         for (int seed : Seeds(c)) { hops[seed] = 0; queue.push_back(seed); }
         while (!queue.empty()) {
@@ -214,8 +215,8 @@ TEST_F(IndexPropagationOnBumps, SeedReferenceBoundsNormalsAndSharesTriangle)
     const BumpyGrid &d = Data();
     for (int depth : {0, 1, 6}) {
         const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(depth));
-        const std::vector<int> seed = d.Seeds(c);
-        const std::vector<int> hops = d.HopsFromSeed(c);
+        const IndexArray seed = d.Seeds(c);
+        const IndexArray hops = d.HopsFromSeed(c);
         for (int i = 0; i < d.s.Size(); ++i) {
             ASSERT_GE(c.label[i], 0);
             ASSERT_LT(c.label[i], c.clusterCount);
@@ -238,7 +239,7 @@ TEST_F(IndexPropagationOnBumps, UnlimitedClustersAreMaximal)
 {
     const BumpyGrid &d = Data();
     const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(0));
-    const std::vector<int> seed = d.Seeds(c);
+    const IndexArray seed = d.Seeds(c);
     for (int i = 0; i < d.s.Size(); ++i) {
         const int l = c.label[i], root = seed[l];
         for (const int *q = d.graph.begin(i); q != d.graph.end(i); ++q) {
@@ -256,7 +257,7 @@ TEST_F(IndexPropagationOnBumps, CurrentPointReferenceBoundsNormalsAlongEdges)
     const BumpyGrid &d = Data();
     const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
                                    Params(6, PropagationReference::CurrentPoint));
-    const std::vector<int> seed = d.Seeds(c);
+    const IndexArray seed = d.Seeds(c);
     std::vector<char> reached(d.s.Size(), 0);
     for (int i = 0; i < d.s.Size(); ++i)
         for (const int *q = d.graph.begin(i); q != d.graph.end(i); ++q)
@@ -277,8 +278,8 @@ TEST_F(IndexPropagationOnBumps, DepthFirstAndBreadthFirstLabelEverything)
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
         const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
                                        Params(6, PropagationReference::Seed, order));
-        const std::vector<int> seed = d.Seeds(c);
-        const std::vector<int> hops = d.HopsFromSeed(c);
+        const IndexArray seed = d.Seeds(c);
+        const IndexArray hops = d.HopsFromSeed(c);
         const auto sizes = gstest::ClusterSizes(c.label);
         EXPECT_EQ(int(sizes.size()), c.clusterCount) << "labels 0..count-1 are all used";
         for (int i = 0; i < d.s.Size(); ++i) {
@@ -297,16 +298,16 @@ TEST_F(IndexPropagationOnBumps, DepthFirstAndBreadthFirstLabelEverything)
 TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSeedOrder)
 {
     const BumpyGrid &d = Data();
-    std::vector<int> initial(d.s.Size(), 0);
+    IndexArray initial(d.s.Size(), 0);
     for (int i = 0; i < d.s.Size(); i += 17) initial[i] = -1;
-    std::vector<int> positionOf(d.s.Size());
+    IndexArray positionOf(d.s.Size());
     for (int s = 0; s < d.s.Size(); ++s) positionOf[d.seedOrder[s]] = s;
     const int threadsBefore = omp_get_max_threads();
     for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
         omp_set_num_threads(1);
         const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
                                          Params(6, PropagationReference::Seed, order), initial);
-        const std::vector<int> seed = d.Seeds(one);
+        const IndexArray seed = d.Seeds(one);
         for (int l = 1; l < one.clusterCount; ++l) EXPECT_LT(positionOf[seed[l - 1]], positionOf[seed[l]]);
         for (int threads : {2, 3, 7}) {
             omp_set_num_threads(threads);
@@ -325,9 +326,9 @@ TEST(IndexPropagation, ExcludedPointsStayExcluded)
 {
     const int n = 50;
     const PointArray normals(n, P3(0, 0, 1));
-    const std::vector<int> triangle(n, 0);
+    const IndexArray triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
-    std::vector<int> initial(n, 0);
+    IndexArray initial(n, 0);
     initial[20] = -1;
     initial[0] = -1;
     const Clustering c = Propagate(normals, triangle, g, Identity(n), Params(0), initial);
@@ -345,7 +346,7 @@ TEST(IndexPropagation, DifferentTrianglesNeverShareALabel)
 {
     const int n = 30;
     const PointArray normals(n, P3(0, 0, 1));
-    std::vector<int> triangle(n);
+    IndexArray triangle(n);
     for (int i = 0; i < n; ++i) triangle[i] = (i / 5) % 2; // runs of 5 alternate
     const Clustering c = Propagate(normals, triangle, gstest::MakeGraph(PathAdjacency(n)), Identity(n), Params(0));
     EXPECT_EQ(c.clusterCount, 6);

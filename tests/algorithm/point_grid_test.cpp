@@ -16,6 +16,7 @@ namespace {
 using vcg::gaussphere::PointGrid;
 using gstest::P3;
 using gstest::PointArray;
+using gstest::IndexArray;
 
 /// The k nearest others of point i by brute force, sorted by (distance, index).
 std::vector<std::pair<float, int>> BruteForce(const PointArray &pts, int i, int k)
@@ -33,7 +34,7 @@ std::vector<std::pair<float, int>> BruteForce(const PointArray &pts, int i, int 
 void ExpectExactAllKNearest(const PointArray &pts, int k)
 {
     const PointGrid grid(pts);
-    std::vector<int> calls(pts.size(), 0);
+    IndexArray calls(pts.size(), 0);
     std::vector<std::vector<float>> got(pts.size());
     std::vector<std::vector<int>> ids(pts.size());
     grid.ForAllKNearest(k, [&](int i, const int *idx, const float *d2, int found) {
@@ -50,7 +51,7 @@ void ExpectExactAllKNearest(const PointArray &pts, int k)
             EXPECT_EQ(ids[i][t], expected[t].second) << "point " << i << " rank " << t;
         }
     }
-    std::vector<int> order = grid.Order();
+    IndexArray order = grid.Order();
     std::sort(order.begin(), order.end());
     for (int i = 0; i < int(order.size()); ++i) EXPECT_EQ(order[i], i) << "Order() is a permutation";
 }

@@ -17,6 +17,7 @@ namespace {
 using namespace vcg::gaussphere;
 using gstest::P3;
 using gstest::PointArray;
+using gstest::IndexArray;
 
 P3 Tilted(double degrees)
 {
@@ -26,7 +27,7 @@ P3 Tilted(double degrees)
 
 const double kChord = 0.42; // d_max at n = 8: a cone of about 24 degrees
 
-Clustering Labels(const std::vector<int> &label)
+Clustering Labels(const IndexArray &label)
 {
     Clustering c;
     c.label = label;
@@ -44,11 +45,11 @@ TEST(SingletonRejoining, JoinsTheClusterWithTheClosestMeanNormal)
     const NeighborGraph g = gstest::MakeGraph({{1, 2, 3, 4}, {2}, {1}, {4}, {3}});
     Clustering c = Labels({0, 1, 1, 2, 2});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 1);
-    EXPECT_EQ(c.label, (std::vector<int>{2, 1, 1, 2, 2}));
+    EXPECT_EQ(c.label, (IndexArray{2, 1, 1, 2, 2}));
     EXPECT_EQ(c.clusterCount, 3) << "label 0 is left empty until Compact()";
     c.Compact();
     EXPECT_EQ(c.clusterCount, 2);
-    EXPECT_EQ(c.label, (std::vector<int>{0, 1, 1, 0, 0}));
+    EXPECT_EQ(c.label, (IndexArray{0, 1, 1, 0, 0}));
 }
 
 // Mirror image: with cluster 2 tilted further than cluster 1, it joins cluster 1, so the
@@ -70,7 +71,7 @@ TEST(SingletonRejoining, SingletonsWithOnlySingletonNeighboursStay)
     const NeighborGraph g = gstest::MakeGraph({{1, 2}, {0, 2}, {0, 1}});
     Clustering c = Labels({0, 1, 2});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
-    EXPECT_EQ(c.label, (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(c.label, (IndexArray{0, 1, 2}));
 }
 
 // Within one pass decisions use the clustering before the pass: in the chain
@@ -82,10 +83,10 @@ TEST(SingletonRejoining, OnePassUsesThePreviousClusteringAndPassesRepeat)
     const NeighborGraph g = gstest::MakeGraph({{1}, {0, 2}, {3, 1}, {2}, {0}});
     Clustering once = Labels({0, 1, 2, 2, 3});
     EXPECT_EQ(RejoinSingletonsOnce(normals, g, kChord, once), 1);
-    EXPECT_EQ(once.label, (std::vector<int>{0, 2, 2, 2, 3}));
+    EXPECT_EQ(once.label, (IndexArray{0, 2, 2, 2, 3}));
     Clustering repeated = Labels({0, 1, 2, 2, 3});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, repeated), 3); // B, then A, then the point behind A
-    EXPECT_EQ(repeated.label, (std::vector<int>{2, 2, 2, 2, 2}));
+    EXPECT_EQ(repeated.label, (IndexArray{2, 2, 2, 2, 2}));
     Clustering capped = Labels({0, 1, 2, 2, 3});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, capped, 1), 1) << "maxPasses caps the passes";
 }
@@ -123,7 +124,7 @@ TEST(SingletonRejoining, ExcludedPointsAreIgnored)
     Clustering c = Labels({0, -1, -1, 1});
     c.clusterCount = 2;
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, c), 0);
-    EXPECT_EQ(c.label, (std::vector<int>{0, -1, -1, 1}));
+    EXPECT_EQ(c.label, (IndexArray{0, -1, -1, 1}));
 }
 
 // Equal scores: the smaller label wins (a deterministic tie-break).
@@ -147,7 +148,7 @@ TEST(SingletonRejoining, IndependentOfThreadCount)
         n.Normalize();
     }
     const GaussianSphere sphere(16);
-    std::vector<int> triangle;
+    IndexArray triangle;
     for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
     const PointGrid tree(s.points);
     AdaptiveNeighborParams ap;

@@ -23,20 +23,20 @@ SurfelGenerationParams Params(double h = 0.1, double margin = 0.75)
     return p;
 }
 
-std::vector<Surfel> Generate(const gstest::PointSet &s, const std::vector<int> &label, const SurfelGenerationParams &p,
+std::vector<Surfel> Generate(const gstest::PointSet &s, const IndexArray &label, const SurfelGenerationParams &p,
                              float spacing = 0.05f)
 {
     Clustering c;
     c.label = label;
     c.clusterCount = 0;
     for (int l : label) c.clusterCount = std::max(c.clusterCount, l + 1);
-    return GenerateSurfels(s.points, s.normals, std::vector<float>(s.Size(), spacing), c, p);
+    return GenerateSurfels(s.points, s.normals, FlatVector<float>(s.Size(), spacing), c, p);
 }
 
 /// The frame invariants of every surfel, and containment of each member's projection:
 /// x^2/a^2 + y^2/b^2 <= 1 with x, y the offsets from the centre along the unit axes and
 /// a, b the semi-axis lengths (which include the coverage margin).
-void ExpectValidSurfels(const std::vector<Surfel> &surfels, const gstest::PointSet &s, const std::vector<int> &label)
+void ExpectValidSurfels(const std::vector<Surfel> &surfels, const gstest::PointSet &s, const IndexArray &label)
 {
     for (size_t c = 0; c < surfels.size(); ++c) {
         const Surfel &f = surfels[c];
@@ -50,7 +50,7 @@ void ExpectValidSurfels(const std::vector<Surfel> &surfels, const gstest::PointS
         EXPECT_LT(std::abs(gstest::Dot(f.majorAxis, f.minorAxis)), 1e-5 * a * b) << "axes not orthogonal";
         ASSERT_TRUE(std::isfinite(a) && std::isfinite(b) && std::isfinite(f.position[0]));
     }
-    std::vector<int> members(surfels.size(), 0);
+    IndexArray members(surfels.size(), 0);
     for (int i = 0; i < s.Size(); ++i) {
         if (label[i] < 0) continue;
         const Surfel &f = surfels[label[i]];
@@ -82,7 +82,7 @@ gstest::PointSet CylinderPatch(double arc, double length, int nt, int nz)
 TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
 {
     const gstest::PointSet cyl = CylinderPatch(2.0, 2.0, 40, 40);
-    std::vector<int> label;
+    IndexArray label;
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 40; ++j) label.push_back((i / 8) * 4 + j / 10); // 5 x 4 blocks of 8 x 10
     const std::vector<Surfel> a = Generate(cyl, label, Params());
@@ -90,7 +90,7 @@ TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
     ExpectValidSurfels(a, cyl, label);
 
     const gstest::PointSet sph = gstest::FibonacciSphere(4000);
-    std::vector<int> sphLabel;
+    IndexArray sphLabel;
     for (const P3 &n : sph.normals) // octants x 4 latitude bands
         sphLabel.push_back((n[0] < 0) + 2 * (n[1] < 0) + 4 * std::min(3, int((n[2] + 1) * 2)));
     const std::vector<Surfel> b = Generate(sph, sphLabel, Params(0.5));
@@ -104,13 +104,13 @@ TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
 TEST(SurfelGeneration, MajorAxisFollowsTheLongerSpread)
 {
     const gstest::PointSet longZ = CylinderPatch(0.3, 2.0, 7, 41);
-    const std::vector<Surfel> a = Generate(longZ, std::vector<int>(longZ.Size(), 0), Params(10));
-    ExpectValidSurfels(a, longZ, std::vector<int>(longZ.Size(), 0));
+    const std::vector<Surfel> a = Generate(longZ, IndexArray(longZ.Size(), 0), Params(10));
+    ExpectValidSurfels(a, longZ, IndexArray(longZ.Size(), 0));
     EXPECT_GT(std::abs(a[0].majorAxis[2]) / a[0].majorAxis.Norm(), 0.999);
 
     const gstest::PointSet wideT = CylinderPatch(1.0, 0.2, 41, 5);
-    const std::vector<Surfel> b = Generate(wideT, std::vector<int>(wideT.Size(), 0), Params(10));
-    ExpectValidSurfels(b, wideT, std::vector<int>(wideT.Size(), 0));
+    const std::vector<Surfel> b = Generate(wideT, IndexArray(wideT.Size(), 0), Params(10));
+    ExpectValidSurfels(b, wideT, IndexArray(wideT.Size(), 0));
     EXPECT_LT(std::abs(b[0].majorAxis[2]) / b[0].majorAxis.Norm(), 1e-3);
     // The mean normal of the symmetric arc points to theta = 0.5.
     EXPECT_NEAR(b[0].normal[0], std::cos(0.5), 1e-5);
@@ -127,7 +127,7 @@ TEST(SurfelGeneration, FlatClusterUsesPositionAxesWithKnownLengths)
     gstest::PointSet s = gstest::PlaneGrid(11, 3);
     for (P3 &p : s.points) p += P3(3, -2, 7);
     const float spacing = 1.f;
-    const std::vector<int> label(s.Size(), 0);
+    const IndexArray label(s.Size(), 0);
     const std::vector<Surfel> f = Generate(s, label, Params(100), spacing);
     ASSERT_EQ(f.size(), 1u);
     ExpectValidSurfels(f, s, label);
@@ -149,7 +149,7 @@ TEST(SurfelGeneration, CurvedClusterSurfelSitsOnTheSurface)
     for (int i = 0; i < sphere.Size(); ++i)
         if (sphere.points[i][2] > std::cos(30 * M_PI / 180)) cap.Add(sphere.points[i], sphere.normals[i]);
     ASSERT_GT(cap.Size(), 500);
-    const std::vector<int> label(cap.Size(), 0);
+    const IndexArray label(cap.Size(), 0);
     const std::vector<Surfel> f = Generate(cap, label, Params(10), 0.01f);
     ExpectValidSurfels(f, cap, label);
     P3 centroid(0, 0, 0);
@@ -221,8 +221,8 @@ TEST(SurfelGeneration, CoincidentPointsGetAValidFrame)
 {
     gstest::PointSet s;
     for (int i = 0; i < 5; ++i) s.Add(P3(1, 1, 1), P3(0, 0, 1));
-    const std::vector<Surfel> f = Generate(s, std::vector<int>(5, 0), Params(), 0.1f);
-    ExpectValidSurfels(f, s, std::vector<int>(5, 0));
+    const std::vector<Surfel> f = Generate(s, IndexArray(5, 0), Params(), 0.1f);
+    ExpectValidSurfels(f, s, IndexArray(5, 0));
     EXPECT_NEAR(f[0].majorAxis.Norm(), 0.075, 1e-6);
 }
 
@@ -230,7 +230,7 @@ TEST(SurfelGeneration, CoincidentPointsGetAValidFrame)
 TEST(SurfelGeneration, ExcludedPointsAreIgnored)
 {
     gstest::PointSet s = gstest::PlaneGrid(4, 4);
-    std::vector<int> label(16, -1);
+    IndexArray label(16, -1);
     for (int i = 0; i < 4; ++i) label[i] = 0;      // row y = 0
     for (int i = 12; i < 16; ++i) label[i] = 1;    // row y = 3
     const std::vector<Surfel> f = Generate(s, label, Params());

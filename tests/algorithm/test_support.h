@@ -18,6 +18,7 @@ namespace gstest {
 
 typedef vcg::Point3f P3;
 using vcg::gaussphere::PointArray;
+using vcg::gaussphere::IndexArray;
 const double kPi = 3.14159265358979323846;
 
 /// An oriented point set as two parallel arrays, plus an optional per-point tag
@@ -133,7 +134,7 @@ private:
 };
 
 /// Sizes of the clusters of a labelling (label -> member count), ignoring -1.
-inline std::map<int, int> ClusterSizes(const std::vector<int> &label)
+inline std::map<int, int> ClusterSizes(const IndexArray &label)
 {
     std::map<int, int> size;
     for (int l : label)

@@ -27,12 +27,12 @@ struct NeighborGraph
 {
     int stride = 0;                 ///< k: slots per point
     FlatVector<int> adjacency;      ///< N(i) = adjacency[i*stride, i*stride + count[i])
-    std::vector<std::uint8_t> count; ///< neighbours inside the cone of `chord`
-    std::vector<std::uint8_t> found; ///< neighbours found (min(k, N-1)), kept ones first
+    FlatVector<std::uint8_t> count; ///< neighbours inside the cone of `chord`
+    FlatVector<std::uint8_t> found; ///< neighbours found (min(k, N-1)), kept ones first
     /// Mean distance to the (up to) 6 nearest neighbours at a non-zero distance; for a
     /// point whose k neighbours all coincide with it, the median spacing of the others
     /// (or 1e-3 when every point coincides: there is no scale to read).
-    std::vector<float> spacing;
+    FlatVector<float> spacing;
     double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet);
                                     ///< reset it to -1 if the normals change
 
@@ -49,7 +49,7 @@ struct AdaptiveNeighborParams
 
 /// Replaces zero spacings (points with only coincident neighbours) by the median of the
 /// positive ones, or by 1e-3 if there are none.
-inline void FillUnknownSpacing(std::vector<float> &spacing)
+inline void FillUnknownSpacing(FlatVector<float> &spacing)
 {
     std::vector<float> known;
     for (float s : spacing)

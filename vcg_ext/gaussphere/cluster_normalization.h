@@ -32,7 +32,7 @@ struct ClusterNormalizationParams
     int minSplitSize = 6;    ///< clusters with fewer points are never split
     int maxClusterSize = 0;  ///< clusters with more points are split whatever their shape (0 = off)
     /// Per point: at a crease (MarkCreasePoints); null: no crease limits.
-    const std::vector<char> *creasePoints = nullptr;
+    const FlatVector<char> *creasePoints = nullptr;
     int creaseClusterSize = 5;   ///< maxClusterSize of clusters holding a crease point (0 = off)
     int creaseMinSplitSize = 4;  ///< minSplitSize of clusters holding a crease point
 };
@@ -45,7 +45,7 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
     // Per cluster: the splitting plane (centroid, major axis), or a zero axis for "keep".
-    std::vector<Eigen::Vector3d> centroid(count), majorAxis(count, Eigen::Vector3d::Zero());
+    FlatVector<Eigen::Vector3d> centroid(count), majorAxis(count, Eigen::Vector3d::Zero());
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < count; ++c) {
         const int size = members.Size(c);

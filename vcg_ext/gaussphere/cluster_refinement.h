@@ -148,7 +148,7 @@ private:
     const PointArray &points_, &normals_;
     Clustering &clusters_;
     double invH2_;
-    std::vector<int> index_;
+    IndexArray index_;
     std::vector<std::pair<int, int>> range_;
 };
 

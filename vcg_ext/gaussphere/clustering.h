@@ -5,18 +5,20 @@
 
 #include <vector>
 
+#include "flat_vector.h"
+
 namespace vcg {
 namespace gaussphere {
 
 struct Clustering
 {
-    std::vector<int> label;  ///< per point: cluster index in [0, clusterCount) or -1
+    IndexArray label;        ///< per point: cluster index in [0, clusterCount) or -1
     int clusterCount = 0;
 
     /// Renumbers clusters 0..count-1 in order of first appearance, dropping empty ones.
     void Compact()
     {
-        std::vector<int> remap(clusterCount, -1);
+        IndexArray remap(clusterCount, -1);
         int next = 0;
         for (int &l : label) {
             if (l < 0) continue;
@@ -31,8 +33,8 @@ struct Clustering
 /// in increasing point order (a counting sort, so deterministic).
 struct ClusterMembers
 {
-    std::vector<int> offset;
-    std::vector<int> index;
+    IndexArray offset;
+    IndexArray index;
 
     explicit ClusterMembers(const Clustering &c)
         : offset(c.clusterCount + 1, 0)
@@ -41,7 +43,7 @@ struct ClusterMembers
             if (l >= 0) ++offset[l + 1];
         for (int k = 0; k < c.clusterCount; ++k) offset[k + 1] += offset[k];
         index.resize(offset.back());
-        std::vector<int> cursor(offset.begin(), offset.end() - 1);
+        IndexArray cursor(offset.begin(), offset.end() - 1);
         for (int i = 0; i < int(c.label.size()); ++i)
             if (c.label[i] >= 0) index[cursor[c.label[i]]++] = i;
     }

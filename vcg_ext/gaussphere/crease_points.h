@@ -28,14 +28,14 @@ namespace gaussphere {
 /// Per point: 1 when one of its neighbours in `graph` (all of the k nearest, inside the
 /// cone of normals or not) has a normal between `creaseAngleDegrees` and 120 degrees away
 /// from its own, else 0. Preconditions: unit normals; 0 < creaseAngleDegrees < 120.
-inline std::vector<char> MarkCreasePoints(const PointArray &normals, const NeighborGraph &graph,
+inline FlatVector<char> MarkCreasePoints(const PointArray &normals, const NeighborGraph &graph,
                                           double creaseAngleDegrees)
 {
     const double degree = std::acos(-1.0) / 180.0;
     const float maxDot = float(std::cos(creaseAngleDegrees * degree));
     const float minDot = float(std::cos(120.0 * degree));
     const int n = graph.Size();
-    std::vector<char> crease(n, 0);
+    FlatVector<char> crease(n, 0);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
         const int *slot = graph.begin(i);

@@ -10,7 +10,8 @@
 //   2 MB-aligned and rounded up to whole 2 MB pages, all advised: a buffer of 256 KB may thus
 //   hold 2 MB, which caps the waste at 8 times the smallest such buffer; the advice goes with
 //   the buffer. Elsewhere than on Linux, plain std::allocator.
-// PointArray, a FlatVector of points, carries the positions and normals of the algorithms.
+// PointArray and IndexArray, FlatVectors of points and of indices, carry the per-point data
+// of the algorithms.
 #ifndef VCG_EXT_GAUSSPHERE_FLAT_VECTOR_H
 #define VCG_EXT_GAUSSPHERE_FLAT_VECTOR_H
 
@@ -102,6 +103,8 @@ using FlatVector = std::vector<T, DefaultInitAllocator<T>>;
 
 /// Positions or normals of a point set, as the algorithms take them.
 using PointArray = FlatVector<vcg::Point3f>;
+/// Per-point indices (labels, Gaussian triangles, orders).
+using IndexArray = FlatVector<int>;
 
 } // namespace gaussphere
 } // namespace vcg

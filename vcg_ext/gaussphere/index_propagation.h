@@ -55,8 +55,8 @@ struct IndexPropagationParams
 /// the triangles it owns, taking their seeds in seedOrder (one sweep over it per thread keeps
 /// the accesses as local as the sequential pass's); the labels are then numbered by the seeds'
 /// positions in seedOrder, as a sequential pass over all seeds numbers them.
-inline bool PropagateIndices(const PointArray &normals, const std::vector<int> &triangle,
-                             const NeighborGraph &graph, const std::vector<int> &seedOrder,
+inline bool PropagateIndices(const PointArray &normals, const IndexArray &triangle,
+                             const NeighborGraph &graph, const IndexArray &seedOrder,
                              const IndexPropagationParams &param, Clustering &clusters,
                              const std::function<bool(double)> &progress = nullptr)
 {

@@ -138,7 +138,7 @@ public:
     }
 
     /// Point indices sorted by the Morton code of their cell: a spatially coherent order.
-    const std::vector<int> &Order() const { return order_; }
+    const IndexArray &Order() const { return order_; }
     double CellSize() const { return cellSize_; }
     int CellCount() const { return int(cellKey_.size()); }
 
@@ -328,7 +328,7 @@ private:
         vcg::Box3f box;
 #pragma omp parallel for schedule(static, 1)
         for (int a = 0; a < 3; ++a) {
-            std::vector<float> coordinate(n);
+            FlatVector<float> coordinate(n);
             for (size_t i = 0; i < n; ++i) coordinate[i] = points[i][a];
             const size_t low = n / 1000, high = n - 1 - n / 1000;
             std::nth_element(coordinate.begin(), coordinate.begin() + low, coordinate.end());
@@ -683,7 +683,7 @@ private:
     vcg::Box3f box_;
     double cellSize_ = 1.0;
     int maxGridCell_; // cells with more points go to the kd-tree, after their copies
-    std::vector<int> order_;
+    IndexArray order_;
     std::vector<int> far_;          // points outside the grid box
     std::vector<int> cellStart_;
     std::vector<std::uint64_t> cellKey_;

@@ -182,7 +182,7 @@ private:
 /// values[i] = old values[order[i]], through a fresh buffer swapped in (FlatVector: no zeroing
 /// pass, huge pages).
 template <class Vector>
-void Permute(const std::vector<int> &order, Vector &values)
+void Permute(const IndexArray &order, Vector &values)
 {
     assert(order.size() == values.size());
     Vector permuted(values.size());
@@ -280,7 +280,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // close in memory, which makes every later pass cache-friendly (1.5-1.8x faster on
     // randomly ordered input).
     PointGrid grid(points, PointGrid::kPointsPerCell, [cb, sorting]() { detail::Report(cb, 1, sorting); });
-    const std::vector<int> &spatial = grid.Order();
+    const IndexArray &spatial = grid.Order();
     detail::Report(cb, 1, sorting);
     detail::Permute(spatial, points);
     detail::Permute(spatial, normals);
@@ -302,7 +302,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     normalization.threshold = param.normalizationThreshold;
     normalization.minSplitSize = param.minSplitSize;
     normalization.maxClusterSize = param.maxClusterSize;
-    std::vector<char> creasePoints;
+    FlatVector<char> creasePoints;
     if (param.creaseAngle > 0) {
         creasePoints = MarkCreasePoints(normals, graph, param.creaseAngle);
         normalization.creasePoints = &creasePoints;
@@ -325,7 +325,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         long long kept = 0;
         for (int i = 0; i < n; ++i) kept += graph.count[i];
         r.meanAdaptiveNeighbors = double(kept) / n;
-        std::vector<int> triangle(n);
+        IndexArray triangle(n);
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < n; ++i) triangle[i] = sphere.TriangleOf(normals[i]);
         Clustering &c = r.clusters;

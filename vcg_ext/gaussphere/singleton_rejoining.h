@@ -29,17 +29,18 @@ inline int RejoinSingletonsOnce(const PointArray &normals, const NeighborGraph &
 {
     const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
     const int n = int(clusters.label.size());
-    std::vector<int> size(clusters.clusterCount, 0);
-    std::vector<vcg::Point3f> normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
+    IndexArray size(clusters.clusterCount, 0);
+    PointArray normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
     for (int i = 0; i < n; ++i) {
         const int l = clusters.label[i];
         if (l < 0) continue;
         ++size[l];
         normalSum[l] += normals[i];
     }
-    std::vector<int> target(n, -1);
+    IndexArray target(n);
 #pragma omp parallel for schedule(dynamic, 4096)
     for (int i = 0; i < n; ++i) {
+        target[i] = -1;
         const int own = clusters.label[i];
         if (own < 0 || size[own] != 1) continue;
         float bestScore = maxScore;

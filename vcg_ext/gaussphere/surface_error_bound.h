@@ -68,7 +68,7 @@ struct SurfaceErrorBoundResult
 /// \post Deterministic: the result does not depend on the thread count.
 inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points,
                                                         const PointArray &normals,
-                                                        const std::vector<float> &spacing,
+                                                        const FlatVector<float> &spacing,
                                                         const SurfelGenerationParams &surfelParam,
                                                         double maxDistance, double diagonal, int maxRounds,
                                                         ClusterRefiner &refiner, Clustering &clusters,

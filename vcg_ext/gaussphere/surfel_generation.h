@@ -171,7 +171,7 @@ inline ClusterFrame ComputeClusterFrame(const PointArray &points,
 /// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
 inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
                                            const PointArray &normals,
-                                           const std::vector<float> &spacing, const Clustering &clusters,
+                                           const FlatVector<float> &spacing, const Clustering &clusters,
                                            const SurfelGenerationParams &param)
 {
     using detail::ToEigen;
