@@ -137,6 +137,24 @@ TEST(PointGrid, PlanarGridMatchesBruteForce)
     ExpectExactAllKNearest(pts, 16);
 }
 
+// The portable loops (used on CPUs without AVX2) give the same exact answers as the AVX2
+// kernels: the cases above again, with the kernels switched off.
+TEST(PointGrid, PortableKernelsMatchBruteForce)
+{
+    bool &avx2 = PointGrid::Avx2Kernels();
+    const bool before = avx2;
+    avx2 = false;
+    ExpectExactAllKNearest(SpherePoints(3000, 1), 16);
+    PointArray crowded = SpherePoints(400, 7);
+    for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
+    ExpectExactAllKNearest(crowded, 16);
+    PointArray planar;
+    for (int x = 0; x < 40; ++x)
+        for (int y = 0; y < 40; ++y) planar.push_back(P3(x * 0.1f, y * 0.1f, 0));
+    ExpectExactAllKNearest(planar, 16);
+    avx2 = before;
+}
+
 } // namespace
 
 namespace {
