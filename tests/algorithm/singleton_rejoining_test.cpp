@@ -82,13 +82,11 @@ TEST(SingletonRejoining, OnePassUsesThePreviousClusteringAndPassesRepeat)
     const PointArray normals(5, Tilted(0));
     const NeighborGraph g = gstest::MakeGraph({{1}, {0, 2}, {3, 1}, {2}, {0}});
     Clustering once = Labels({0, 1, 2, 2, 3});
-    EXPECT_EQ(RejoinSingletonsOnce(normals, g, kChord, once), 1);
+    EXPECT_EQ(RejoinSingletons(normals, g, kChord, once, 1), 1);
     EXPECT_EQ(once.label, (IndexArray{0, 2, 2, 2, 3}));
     Clustering repeated = Labels({0, 1, 2, 2, 3});
     EXPECT_EQ(RejoinSingletons(normals, g, kChord, repeated), 3); // B, then A, then the point behind A
     EXPECT_EQ(repeated.label, (IndexArray{2, 2, 2, 2, 2}));
-    Clustering capped = Labels({0, 1, 2, 2, 3});
-    EXPECT_EQ(RejoinSingletons(normals, g, kChord, capped, 1), 1) << "maxPasses caps the passes";
 }
 
 // The cone: a neighbouring cluster whose mean normal is farther than maxChord is not
@@ -137,8 +135,8 @@ TEST(SingletonRejoining, TiesGoToTheSmallerLabel)
 }
 
 // On a noisy sphere (many singletons after propagation) one and two threads give the
-// same labels.
-TEST(SingletonRejoining, IndependentOfThreadCount)
+// same labels, and so do passes run one at a time.
+TEST(SingletonRejoining, IndependentOfThreadCountAndOfPassBookkeeping)
 {
     gstest::PointSet s = gstest::FibonacciSphere(20000);
     std::mt19937 rng(9);
@@ -173,6 +171,15 @@ TEST(SingletonRejoining, IndependentOfThreadCount)
     EXPECT_GT(joinedOne, 500) << "the fixture must produce many singletons";
     EXPECT_EQ(joinedOne, joinedTwo);
     EXPECT_EQ(one.label, two.label);
+    // One pass at a time, each summing the clusters afresh, gives the same labels: the sums
+    // kept up to date between passes are exact.
+    Clustering stepwise = naive;
+    int joinedStepwise = 0, passes = 0;
+    for (int moved; (moved = RejoinSingletons(s.normals, g, ap.coneChord, stepwise, 1)) > 0; ++passes)
+        joinedStepwise += moved;
+    EXPECT_GE(passes, 3) << "the fixture must need several passes";
+    EXPECT_EQ(joinedStepwise, joinedOne);
+    EXPECT_EQ(stepwise.label, one.label);
     // A point that moved was a singleton and joined the (final) cluster of one of its
     // neighbours, whose mean normal is inside its cone.
     const auto before = gstest::ClusterSizes(naive.label);

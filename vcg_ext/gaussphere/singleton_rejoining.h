@@ -4,8 +4,9 @@
 // A cluster's normal is the normalized mean of its members' normals. A singleton only
 // joins a cluster whose normal lies within maxChord of its own (the resampler passes the
 // propagation radius, so a rejoined point is no farther from its cluster's normal than a
-// propagated one), so rejoining never drags a cluster's normal along a chain of points. Passes repeat until no singleton moves: a singleton
-// whose neighbours were all singletons may find a cluster once they have joined one.
+// propagated one), so rejoining never drags a cluster's normal along a chain of points.
+// Passes repeat until no singleton moves: a singleton whose neighbours were all singletons
+// may find a cluster once they have joined one.
 // Within a pass all decisions are taken against the clustering as it was before the
 // pass, so the result does not depend on the processing order or the thread count; a
 // singleton only joins clusters of two or more points, so two singletons never swap
@@ -13,6 +14,8 @@
 #ifndef VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
 #define VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -23,54 +26,86 @@
 namespace vcg {
 namespace gaussphere {
 
-/// One pass; returns the number of singletons that joined a neighbouring cluster.
-inline int RejoinSingletonsOnce(const PointArray &normals, const NeighborGraph &graph,
-                                double maxChord, Clustering &clusters)
+/// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
+/// Postcondition: clusters may contain empty labels; call Compact() when needed.
+///
+/// Cost: the cluster sizes and normal sums are computed once, then only the clusters that
+/// singletons joined are summed again, over their members in point order, so that each pass
+/// sees exactly the sums a pass computing them afresh would (the same float additions in the
+/// same order), and later passes only visit the singletons still left.
+inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph, double maxChord,
+                            Clustering &clusters, int maxPasses = 32)
 {
     const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
     const int n = int(clusters.label.size());
+    IndexArray &label = clusters.label;
     IndexArray size(clusters.clusterCount, 0);
     PointArray normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
     for (int i = 0; i < n; ++i) {
-        const int l = clusters.label[i];
+        const int l = label[i];
         if (l < 0) continue;
         ++size[l];
         normalSum[l] += normals[i];
     }
-    IndexArray target(n);
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (int i = 0; i < n; ++i) {
-        target[i] = -1;
-        const int own = clusters.label[i];
-        if (own < 0 || size[own] != 1) continue;
-        float bestScore = maxScore;
-        for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
-            const int l = clusters.label[*q];
-            if (l < 0 || l == own || size[l] < 2) continue;
-            const float norm = normalSum[l].Norm();
-            const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
-            if (score < bestScore || (score == bestScore && (target[i] < 0 || l < target[i]))) {
-                bestScore = score;
-                target[i] = l;
-            }
-        }
-    }
-    int joined = 0;
+    IndexArray singletons; // in point order
     for (int i = 0; i < n; ++i)
-        if (target[i] >= 0) { clusters.label[i] = target[i]; ++joined; }
-    return joined;
-}
-
-/// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
-/// Postcondition: clusters may contain empty labels; call Compact() when needed.
-inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph,
-                            double maxChord, Clustering &clusters, int maxPasses = 32)
-{
+        if (label[i] >= 0 && size[label[i]] == 1) singletons.push_back(i);
+    if (singletons.empty() || maxPasses <= 0) return 0;
+    const ClusterMembers before(clusters); // members that stay put: all but the singletons
+    std::vector<std::pair<int, int>> joins; // (cluster, point) of every singleton that joined
+    IndexArray target(singletons.size());
     int joined = 0;
-    for (int pass = 0; pass < maxPasses; ++pass) {
-        const int moved = RejoinSingletonsOnce(normals, graph, maxChord, clusters);
+    for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
+        // Decisions against the clustering as it was before the pass.
+#pragma omp parallel for schedule(dynamic, 1024)
+        for (int s = 0; s < int(singletons.size()); ++s) {
+            const int i = singletons[s], own = label[i];
+            float bestScore = maxScore;
+            int best = -1;
+            for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
+                const int l = label[*q];
+                if (l < 0 || l == own || size[l] < 2) continue;
+                const float norm = normalSum[l].Norm();
+                const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
+                if (score < bestScore || (score == bestScore && (best < 0 || l < best))) {
+                    bestScore = score;
+                    best = l;
+                }
+            }
+            target[s] = best;
+        }
+        std::vector<int> touched;
+        size_t left = 0;
+        for (size_t s = 0; s < singletons.size(); ++s) {
+            const int i = singletons[s], t = target[s];
+            if (t < 0) { singletons[left++] = i; continue; }
+            size[label[i]] = 0;
+            normalSum[label[i]] = vcg::Point3f(0, 0, 0);
+            label[i] = t;
+            ++size[t];
+            joins.push_back({t, i});
+            touched.push_back(t);
+        }
+        const int moved = int(singletons.size() - left);
+        singletons.resize(left);
         if (moved == 0) break;
         joined += moved;
+        std::sort(joins.begin(), joins.end());
+        std::sort(touched.begin(), touched.end());
+        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+#pragma omp parallel for schedule(dynamic, 256)
+        for (int u = 0; u < int(touched.size()); ++u) {
+            const int t = touched[u];
+            // Merge the members that stayed with the singletons that joined, both ascending.
+            auto j = std::lower_bound(joins.begin(), joins.end(), std::make_pair(t, -1));
+            const int *m = before.begin(t);
+            vcg::Point3f sum(0, 0, 0);
+            while (m != before.end(t) || (j != joins.end() && j->first == t)) {
+                const bool takeJoin = j != joins.end() && j->first == t && (m == before.end(t) || j->second < *m);
+                sum += normals[takeJoin ? (j++)->second : *m++];
+            }
+            normalSum[t] = sum;
+        }
     }
     return joined;
 }
