@@ -33,6 +33,9 @@ namespace gaussphere {
 /// singletons joined are summed again, over their members in point order, so that each pass
 /// sees exactly the sums a pass computing them afresh would (the same float additions in the
 /// same order), and later passes only visit the singletons still left.
+/// Below this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
+constexpr size_t kRejoinParallelMin = 4096;
+
 inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph, double maxChord,
                             Clustering &clusters, int maxPasses = 32)
 {
@@ -56,8 +59,9 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     IndexArray target(singletons.size());
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
-        // Decisions against the clustering as it was before the pass.
-#pragma omp parallel for schedule(dynamic, 1024)
+        // Decisions against the clustering as it was before the pass. Later passes have a few
+        // singletons left: waking the other threads would cost more than they do.
+#pragma omp parallel for schedule(dynamic, 1024) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
             float bestScore = maxScore;
@@ -75,6 +79,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
             target[s] = best;
         }
         std::vector<int> touched;
+        const size_t earlierJoins = joins.size();
         size_t left = 0;
         for (size_t s = 0; s < singletons.size(); ++s) {
             const int i = singletons[s], t = target[s];
@@ -90,10 +95,11 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         singletons.resize(left);
         if (moved == 0) break;
         joined += moved;
-        std::sort(joins.begin(), joins.end());
+        std::sort(joins.begin() + earlierJoins, joins.end());
+        std::inplace_merge(joins.begin(), joins.begin() + earlierJoins, joins.end());
         std::sort(touched.begin(), touched.end());
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
         for (int u = 0; u < int(touched.size()); ++u) {
             const int t = touched[u];
             // Merge the members that stayed with the singletons that joined, both ascending.
