@@ -169,7 +169,7 @@ void ToSimplifiedSet(const vcg::gaussphere::ResamplingResult &result, Simplified
         set.minor.push_back(s.minorAxis);
         set.blendScale.push_back(s.blendScale);
     }
-    set.representative = result.representative;
+    set.representative.assign(result.representative.begin(), result.representative.end());
 }
 
 /// Largest distance of an input point to the plane of its own surfel (centre, normal), over the
@@ -386,7 +386,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     // Ours fixes the count every peer is matched to.
     SimplifiedSet ours;
     {
-        std::vector<int> reference; // representative[] of the first thread count, to check the others
+        vcg::gaussphere::IndexArray reference; // representative[] of the first thread count, to check the others
         vcg::tri::SurfelErrorStats error;
         double errorAboveFraction = kNaN;
         // Without an "ours" row, one untimed run is enough to fix the target.

@@ -42,7 +42,8 @@ Measured Measure(const gstest::PointSet &s, const ResamplingResult &r)
     attributes.ellipseMajorAxes = &major;
     attributes.ellipseMinorAxes = &minor;
     attributes.blendScale = &blendScale;
-    attributes.representative = &r.representative;
+    const std::vector<int> representative(r.representative.begin(), r.representative.end());
+    attributes.representative = &representative;
     Measured m;
     m.stats = vcg::tri::ComputeSurfelError(input, surfels, vcg::tri::SurfelErrorParams(), attributes, &m.distance);
     return m;
@@ -151,7 +152,7 @@ TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
     for (int rounds : {1, 3}) {
         SCOPED_TRACE(rounds);
         Clustering clusters;
-        clusters.label.assign(plain.representative.begin(), plain.representative.end());
+        clusters.label = plain.representative;
         clusters.clusterCount = int(plain.surfels.size());
         ClusterRefiner refiner(s.points, s.normals, clusters, 1.0 / (surfelParam.weightWidth * surfelParam.weightWidth));
         const SurfaceErrorBoundResult r = SplitToSurfaceErrorBound(s.points, s.normals, graph.spacing, surfelParam,
@@ -160,7 +161,7 @@ TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
         EXPECT_EQ(r.narrowings > 0, rounds > 1);
         ResamplingResult capped;
         capped.surfels = r.surfels;
-        capped.representative.assign(clusters.label.begin(), clusters.label.end());
+        capped.representative = clusters.label;
         const Measured m = Measure(s, capped);
         const int above =
             int(std::count_if(m.distance.begin(), m.distance.end(), [&](float d) { return d > bound; }));

@@ -153,7 +153,7 @@ struct ResamplingStats
 struct ResamplingResult
 {
     std::vector<Surfel> surfels;
-    std::vector<int> representative; ///< per input vertex: its surfel, or -1 if skipped
+    IndexArray representative;       ///< per input vertex: its surfel, or -1 if skipped
     ResamplingStats stats;
 };
 
@@ -445,10 +445,14 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
-    double sumSquares = 0;
+    FlatVector<double> normalError(n);
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
         result.representative[source[i]] = clusters.label[i];
-        const double e = (normals[i] - result.surfels[clusters.label[i]].normal).Norm();
+        normalError[i] = (normals[i] - result.surfels[clusters.label[i]].normal).Norm();
+    }
+    double sumSquares = 0; // summed in point order: the same figure for any thread count
+    for (double e : normalError) {
         sumSquares += e * e;
         stats.normalErrorMax = std::max(stats.normalErrorMax, e);
     }
