@@ -40,21 +40,22 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
                             Clustering &clusters, int maxPasses = 32)
 {
     const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
-    const int n = int(clusters.label.size());
     IndexArray &label = clusters.label;
-    IndexArray size(clusters.clusterCount, 0);
-    PointArray normalSum(clusters.clusterCount, vcg::Point3f(0, 0, 0));
-    for (int i = 0; i < n; ++i) {
-        const int l = label[i];
-        if (l < 0) continue;
-        ++size[l];
-        normalSum[l] += normals[i];
-    }
-    IndexArray singletons; // in point order
-    for (int i = 0; i < n; ++i)
-        if (label[i] >= 0 && size[label[i]] == 1) singletons.push_back(i);
-    if (singletons.empty() || maxPasses <= 0) return 0;
     const ClusterMembers before(clusters); // members that stay put: all but the singletons
+    const int count = clusters.clusterCount;
+    IndexArray size(count);
+    PointArray normalSum(count);
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < count; ++c) {
+        size[c] = before.Size(c);
+        vcg::Point3f sum(0, 0, 0);
+        for (const int *m = before.begin(c); m != before.end(c); ++m) sum += normals[*m]; // in point order
+        normalSum[c] = sum;
+    }
+    IndexArray singletons;
+    for (int c = 0; c < count; ++c)
+        if (size[c] == 1) singletons.push_back(*before.begin(c));
+    if (singletons.empty() || maxPasses <= 0) return 0;
     std::vector<std::pair<int, int>> joins; // (cluster, point) of every singleton that joined
     IndexArray target(singletons.size());
     int joined = 0;
