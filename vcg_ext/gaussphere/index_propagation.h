@@ -16,8 +16,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
+#include <chrono>
 #include <cmath>
 #include <functional>
+#include <thread>
 #include <vector>
 
 #include <omp.h>
@@ -43,12 +46,13 @@ struct IndexPropagationParams
 
 /// Labels every point whose `clusters.label` is not -1 (points pre-marked -1 are
 /// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i (>= 0 for every
-/// point, excluded ones included); seeds
-/// are taken in `seedOrder` (a permutation of the points). Postcondition: every non-excluded
-/// point has a label in [0, clusterCount); points of one cluster share a triangle; labels
-/// number the clusters in the order of their seeds in seedOrder.
-/// `progress(fraction)` is called now and then from the calling thread; when it returns
-/// false labelling stops and the function returns false (the clustering is then incomplete).
+/// point, excluded ones included); seeds are taken in `seedOrder` (a permutation of the
+/// points). Postcondition: every non-excluded point has a label in [0, clusterCount); points
+/// of one cluster share a triangle; labels number the clusters in the order of their seeds
+/// in seedOrder.
+/// `progress(fraction)` is called now and then from the calling thread (inside an OpenMP
+/// region: it must not throw); when it returns false labelling stops and the function
+/// returns false (the clustering is then incomplete).
 ///
 /// Parallel, with the result of the sequential algorithm: a label only spreads to points of
 /// its seed's triangle, so the triangles are independent of each other. Each thread labels
@@ -66,35 +70,48 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
     int triangleCount = 0;
 #pragma omp parallel for schedule(static) reduction(max : triangleCount)
     for (int i = 0; i < n; ++i) {
+        assert(triangle[i] >= 0);
         label[i] = label[i] == -1 ? -1 : unlabelled;
         triangleCount = std::max(triangleCount, triangle[i] + 1);
     }
 
-    // Each thread takes whole triangles: the counts' greedy balance, largest first.
-    std::vector<long long> count(size_t(triangleCount), 0);
+    // Each thread takes whole triangles: the counts' greedy balance, largest first (only the
+    // occupied ones: at level 256 the sphere has 1.3 million triangles).
+    IndexArray count(size_t(triangleCount), 0);
     for (int i = 0; i < n; ++i)
         if (label[i] != -1) ++count[size_t(triangle[i])];
-    std::vector<int> byCount(triangleCount);
-    for (int t = 0; t < triangleCount; ++t) byCount[t] = t;
+    std::vector<int> byCount;
+    for (int t = 0; t < triangleCount; ++t)
+        if (count[t] > 0) byCount.push_back(t);
     std::stable_sort(byCount.begin(), byCount.end(), [&](int a, int b) { return count[a] > count[b]; });
-    const int threads = std::max(1, omp_get_max_threads());
-    std::vector<long long> load(threads, 0);
-    std::vector<int> owner(size_t(triangleCount), 0);
-    for (int t : byCount) {
-        const int least = int(std::min_element(load.begin(), load.end()) - load.begin());
-        owner[t] = least;
-        load[least] += count[t];
-    }
+    IndexArray owner(size_t(triangleCount), 0);
 
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
     const int seedCount = int(seedOrder.size());
     const int reportEvery = std::max(1, seedCount / 50);
     std::atomic<bool> cancelled(false);
-#pragma omp parallel num_threads(threads)
+    std::atomic<long long> swept(0); // positions passed, summed over the threads
+    std::atomic<int> sweeping(0);    // threads not done yet
+#pragma omp parallel
     {
+        const int team = omp_get_num_threads();
+#pragma omp single
+        { // for the threads the team actually has (fewer when nested, for instance)
+            sweeping = team;
+            std::vector<long long> load(size_t(team), 0);
+            for (int t : byCount) {
+                const int least = int(std::min_element(load.begin(), load.end()) - load.begin());
+                owner[t] = least;
+                load[size_t(least)] += count[t];
+            }
+        }
         // Only the calling thread (OpenMP's master) talks to the caller's callback.
         const int self = omp_get_thread_num();
         const bool reporter = self == 0;
+        const double sweepTotal = double(team) * std::max(1, seedCount);
+        auto report = [&]() {
+            if (progress && !progress(double(swept) / sweepTotal)) cancelled = true;
+        };
         struct Visit { int point; int depth; };
         // One vector serves both orders: a stack popped at the back, or a queue read from
         // `head` (cleared when a seed's cluster is complete).
@@ -102,11 +119,9 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
         // Every thread walks all of seedOrder, so that each triangle's seeds come in its order.
         for (int position = 0; position < seedCount; ++position) {
             if (position % reportEvery == 0) {
+                if (position > 0) swept += reportEvery;
+                if (reporter) report();
                 if (cancelled.load(std::memory_order_relaxed)) break;
-                if (reporter && progress && !progress(double(position) / seedCount)) {
-                    cancelled = true;
-                    break;
-                }
             }
             const int seed = seedOrder[position];
             const int t = triangle[seed];
@@ -132,11 +147,17 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                 }
             }
         }
+        // The reporter keeps reporting (and listening for a cancel) until every thread is done.
+        --sweeping;
+        while (reporter && sweeping > 0 && !cancelled) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            report();
+        }
     }
     if (cancelled) return false;
 
     // Number the clusters by their seeds' positions in seedOrder.
-    FlatVector<int> idOfPosition(seedOrder.size());
+    IndexArray idOfPosition(seedOrder.size());
     int next = 0;
     for (int s = 0; s < int(seedOrder.size()); ++s) {
         const int l = label[seedOrder[s]];

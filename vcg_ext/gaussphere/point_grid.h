@@ -525,7 +525,8 @@ private:
 
 #ifdef GAUSSPHERE_X86_DISPATCH
     /// MeasureBlock's loop eight points at a time, with the same float operations in the same
-    /// order (no fused multiply-add): the same distances. Returns where it stopped.
+    /// order: the same distances. (A build that enables FMA, e.g. -march=native, could contract
+    /// the two loops differently; the project's build does not.) Returns where it stopped.
     __attribute__((target("avx2"))) static int MeasureAvx2(const float *x, const float *y, const float *z, int m,
                                                          const Point3 &q, float *d2)
     {

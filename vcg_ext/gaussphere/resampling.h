@@ -196,7 +196,7 @@ void Permute(const IndexArray &order, Vector &values)
 /// which vertices are usable, then the copies at their prefix offsets (the flags and offsets
 /// are freed on return, before the neighbour search). Returns the number of deleted vertices.
 template <class MeshType>
-int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &normals, FlatVector<int> &source)
+int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &normals, IndexArray &source)
 {
     const int vertexCount = int(mesh.vert.size());
     FlatVector<char> usable(vertexCount);
@@ -211,7 +211,7 @@ int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &norma
         usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&
                      len > 1e-30;
     }
-    FlatVector<int> slot(vertexCount);
+    IndexArray slot(vertexCount);
     int kept = 0;
     for (int vi = 0; vi < vertexCount; ++vi) {
         slot[vi] = kept;
@@ -258,7 +258,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // Usable points, as flat float arrays; `source` maps them back to vertex indices.
     PointArray points, normals;
-    FlatVector<int> source;
+    IndexArray source;
     result.representative.assign(mesh.vert.size(), -1);
     const int deleted = detail::ReadUsablePoints(mesh, points, normals, source);
     stats.inputCount = int(mesh.vert.size()) - deleted;

@@ -26,6 +26,9 @@
 namespace vcg {
 namespace gaussphere {
 
+/// Below this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
+constexpr size_t kRejoinParallelMin = 4096;
+
 /// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
 /// Postcondition: clusters may contain empty labels; call Compact() when needed.
 ///
@@ -33,9 +36,6 @@ namespace gaussphere {
 /// singletons joined are summed again, over their members in point order, so that each pass
 /// sees exactly the sums a pass computing them afresh would (the same float additions in the
 /// same order), and later passes only visit the singletons still left.
-/// Below this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
-constexpr size_t kRejoinParallelMin = 4096;
-
 inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph, double maxChord,
                             Clustering &clusters, int maxPasses = 32)
 {
@@ -60,8 +60,8 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     IndexArray target(singletons.size());
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
-        // Decisions against the clustering as it was before the pass. Later passes have a few
-        // singletons left: waking the other threads would cost more than they do.
+        // Decisions against the clustering as it was before the pass. Later passes have few
+        // singletons left, for which threads would cost more than they save.
 #pragma omp parallel for schedule(dynamic, 1024) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
