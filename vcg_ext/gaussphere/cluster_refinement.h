@@ -223,10 +223,7 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
             if (b >= 0 && b != a) adjacent[a].push_back(b);
         }
     }
-    for (auto &list : adjacent) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
+    for (auto &list : adjacent) SortUnique(list);
     std::vector<int> parent(count);
     for (int k = 0; k < count; ++k) parent[k] = k;
     auto root = [&](int k) {
@@ -268,8 +265,7 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
         std::vector<int> merged;
         for (int x : adjacent[keep]) merged.push_back(root(x));
         for (int x : adjacent[gone]) merged.push_back(root(x));
-        std::sort(merged.begin(), merged.end());
-        merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+        SortUnique(merged);
         merged.erase(std::remove(merged.begin(), merged.end(), keep), merged.end());
         adjacent[keep] = std::move(merged);
         std::vector<int>().swap(adjacent[gone]);

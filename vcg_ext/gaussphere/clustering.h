@@ -3,12 +3,20 @@
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTERING_H
 #define VCG_EXT_GAUSSPHERE_CLUSTERING_H
 
+#include <algorithm>
 #include <vector>
 
 #include "flat_vector.h"
 
 namespace vcg {
 namespace gaussphere {
+
+/// Sorts `v` and drops repeated values.
+inline void SortUnique(std::vector<int> &v)
+{
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+}
 
 struct Clustering
 {

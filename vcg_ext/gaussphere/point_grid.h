@@ -541,9 +541,7 @@ private:
         }
         return j;
     }
-#endif
 
-#ifdef GAUSSPHERE_X86_DISPATCH
     /// The compaction of SelectNearest, eight candidates at a time: the lanes inside the bound
     /// are moved to the front by a permutation looked up from their mask. Same result as the
     /// scalar loop; used when the CPU has AVX2 (checked at run time, so the build stays generic).

@@ -204,8 +204,11 @@ int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &norma
 #pragma omp parallel for schedule(static) reduction(+ : deleted)
     for (int vi = 0; vi < vertexCount; ++vi) {
         const auto &v = mesh.vert[vi];
-        usable[vi] = 0;
-        if (v.IsD()) { ++deleted; continue; }
+        if (v.IsD()) {
+            usable[vi] = 0;
+            ++deleted;
+            continue;
+        }
         const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
         const double len = vcg::Point3d::Construct(v.cN()).Norm(); // double: very long normals stay finite
         usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&

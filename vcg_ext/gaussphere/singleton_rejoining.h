@@ -98,8 +98,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         joined += moved;
         std::sort(joins.begin() + earlierJoins, joins.end());
         std::inplace_merge(joins.begin(), joins.begin() + earlierJoins, joins.end());
-        std::sort(touched.begin(), touched.end());
-        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+        SortUnique(touched);
 #pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
         for (int u = 0; u < int(touched.size()); ++u) {
             const int t = touched[u];

@@ -138,12 +138,8 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
         result.pointsAbove = above;
         result.maxDistance = worst;
         if (above == 0 || result.rounds >= maxRounds) break;
-        auto sortUnique = [](std::vector<int> &v) {
-            std::sort(v.begin(), v.end());
-            v.erase(std::unique(v.begin(), v.end()), v.end());
-        };
-        sortUnique(marked);
-        sortUnique(narrow);
+        SortUnique(marked);
+        SortUnique(narrow);
         int splits = 0, narrowed = 0;
         for (int c : marked)
             if (refiner.Size(c) > 1 && refiner.Split(c) >= 0) ++splits;
