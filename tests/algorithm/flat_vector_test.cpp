@@ -32,3 +32,40 @@ TEST(FlatVector, GrowingAcrossTheLargeThresholdKeepsTheValues)
     v.shrink_to_fit(); // back to the small path: the large buffer is unmapped
     EXPECT_EQ(v[9], 27);
 }
+
+#if defined(__linux__)
+TEST(FlatVector, FreedLargeBuffersAreReusedOnlyInsideAReuseScope)
+{
+    using vcg::gaussphere::ReuseLargeBuffers;
+    using Cache = vcg::gaussphere::detail::LargeBufferCache;
+    const size_t quarterPage = (size_t(2) << 20) / 4 / sizeof(int); // 512 KB: a 2 MB mapping
+    {
+        const ReuseLargeBuffers reuse;
+        const int *freed;
+        {
+            FlatVector<int> first(quarterPage);
+            first.back() = 7;
+            freed = first.data();
+        }
+        FlatVector<int> second(3 * quarterPage); // the same mapped size: the freed buffer again
+        EXPECT_EQ(second.data(), freed);
+        {
+            FlatVector<int> tooLarge(3 * Cache::kMaxBufferBytes / sizeof(int)); // freed, not kept
+        }
+        EXPECT_EQ(Cache::Instance().Take(vcg::gaussphere::detail::MappedBytes(3 * Cache::kMaxBufferBytes)), nullptr);
+        {
+            const ReuseLargeBuffers nested; // ends before the outer one: keeps what it held
+            FlatVector<int> third(quarterPage);
+        }
+        void *kept = Cache::Instance().Take(size_t(2) << 20);
+        EXPECT_NE(kept, nullptr);
+        Cache::Instance().Keep(kept, size_t(2) << 20);
+    }
+    // The last scope unmapped what it kept, and nothing is kept without a scope.
+    EXPECT_EQ(Cache::Instance().Take(size_t(2) << 20), nullptr);
+    {
+        FlatVector<int> unscoped(quarterPage);
+    }
+    EXPECT_EQ(Cache::Instance().Take(size_t(2) << 20), nullptr);
+}
+#endif

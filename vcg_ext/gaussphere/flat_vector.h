@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <utility>
 #include <vector>
@@ -42,11 +43,70 @@ constexpr std::size_t kHugePageMinBytes = std::size_t(256) << 10;
 /// Bytes of the mapping that backs a large buffer: whole 2 MB pages.
 inline std::size_t MappedBytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
 
+/// Freed large buffers kept for reuse while a ReuseLargeBuffers scope is open (see there).
+class LargeBufferCache
+{
+public:
+    static constexpr std::size_t kMaxBufferBytes = std::size_t(4) << 20;
+    static constexpr std::size_t kMaxTotalBytes = std::size_t(16) << 20;
+
+    LargeBufferCache() { kept_.reserve(kMaxTotalBytes / kHugePage); } // Keep() never allocates
+
+    static LargeBufferCache &Instance()
+    {
+        static LargeBufferCache cache;
+        return cache;
+    }
+    /// A kept mapping of exactly `size` bytes, or null.
+    void *Take(std::size_t size)
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (std::size_t b = 0; b < kept_.size(); ++b)
+            if (kept_[b].second == size) {
+                void *p = kept_[b].first;
+                kept_[b] = kept_.back();
+                kept_.pop_back();
+                keptBytes_ -= size;
+                return p;
+            }
+        return nullptr;
+    }
+    /// Keeps the mapping if a scope is open and it fits the caps; false: the caller unmaps it.
+    bool Keep(void *p, std::size_t size)
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (scopes_ == 0 || size > kMaxBufferBytes || keptBytes_ + size > kMaxTotalBytes) return false;
+        kept_.push_back({p, size});
+        keptBytes_ += size;
+        return true;
+    }
+    void Enter()
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++scopes_;
+    }
+    void Leave()
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (--scopes_ > 0) return;
+        for (const auto &k : kept_) munmap(k.first, k.second);
+        kept_.clear();
+        keptBytes_ = 0;
+    }
+
+private:
+    std::mutex mutex_;
+    int scopes_ = 0;
+    std::vector<std::pair<void *, std::size_t>> kept_;
+    std::size_t keptBytes_ = 0;
+};
+
 /// A private mapping aligned to 2 MB, its whole 2 MB pages advised as huge pages. Its own
 /// mapping, not the heap's: the advice ends with the buffer (munmap).
 inline void *AllocateLarge(std::size_t bytes)
 {
     const std::size_t size = MappedBytes(bytes);
+    if (void *kept = LargeBufferCache::Instance().Take(size)) return kept;
     void *raw = mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (raw == MAP_FAILED) throw std::bad_alloc();
     const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(raw);
@@ -58,7 +118,10 @@ inline void *AllocateLarge(std::size_t bytes)
     madvise(p, size, MADV_HUGEPAGE); // advice only: failure is harmless
     return p;
 }
-inline void FreeLarge(void *p, std::size_t bytes) { munmap(p, MappedBytes(bytes)); }
+inline void FreeLarge(void *p, std::size_t bytes)
+{
+    if (!LargeBufferCache::Instance().Keep(p, MappedBytes(bytes))) munmap(p, MappedBytes(bytes));
+}
 #else
 constexpr std::size_t kHugePageMinBytes = ~std::size_t(0); // no huge pages to ask for
 inline void *AllocateLarge(std::size_t) { throw std::bad_alloc(); }
@@ -66,6 +129,22 @@ inline void FreeLarge(void *, std::size_t) {}
 #endif
 
 } // namespace detail
+
+/// While one of these is alive (in any thread), freed large FlatVector buffers of up to 4 MB
+/// (16 MB in all) are kept and handed to the next request of the same mapped size, instead
+/// of new mappings whose pages the kernel must fault in and zero again: a run allocates
+/// dozens of per-point buffers, and a buffer of a few hundred KB still costs a 2 MB page.
+/// When the last one ends, the kept buffers are unmapped: nothing outlives the run.
+class ReuseLargeBuffers
+{
+public:
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    ReuseLargeBuffers() { detail::LargeBufferCache::Instance().Enter(); }
+    ~ReuseLargeBuffers() { detail::LargeBufferCache::Instance().Leave(); }
+#endif
+    ReuseLargeBuffers(const ReuseLargeBuffers &) = delete;
+    ReuseLargeBuffers &operator=(const ReuseLargeBuffers &) = delete;
+};
 
 template <class T>
 struct DefaultInitAllocator : std::allocator<T>

@@ -58,6 +58,8 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     if (singletons.empty() || maxPasses <= 0) return 0;
     std::vector<std::pair<int, int>> joins; // (cluster, point) of every singleton that joined
     IndexArray target(singletons.size());
+    std::vector<int> touched;                // clusters that singletons joined in a pass...
+    FlatVector<char> changed(count, 0);      // ... flagged for the next one
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
         // Decisions against the clustering as it was before the pass. Later passes have few
@@ -65,6 +67,11 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
 #pragma omp parallel for schedule(dynamic, 1024) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
+            target[s] = -1;
+            // After the first pass a singleton left over found no cluster; only a change in a
+            // neighbour's cluster can give it one.
+            const auto nextToChange = [&](int q) { return label[q] >= 0 && changed[label[q]]; };
+            if (pass > 0 && std::none_of(graph.begin(i), graph.end(i), nextToChange)) continue;
             float bestScore = maxScore;
             int best = -1;
             for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
@@ -79,7 +86,8 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
             }
             target[s] = best;
         }
-        std::vector<int> touched;
+        for (int t : touched) changed[t] = 0; // the previous pass's flags
+        touched.clear();
         const size_t earlierJoins = joins.size();
         size_t left = 0;
         for (size_t s = 0; s < singletons.size(); ++s) {
@@ -99,6 +107,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         std::sort(joins.begin() + earlierJoins, joins.end());
         std::inplace_merge(joins.begin(), joins.begin() + earlierJoins, joins.end());
         SortUnique(touched);
+        for (int t : touched) changed[t] = 1;
 #pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
         for (int u = 0; u < int(touched.size()); ++u) {
             const int t = touched[u];
