@@ -1,11 +1,11 @@
-// MarkCreasePoints: a point is at a crease when one of its k nearest has a normal turned
-// by more than the crease angle and less than 120 degrees (opposite sheets are not creases).
+// Crease points, as the neighbour search marks them (NeighborGraph::crease): a point is at a
+// crease when one of its k nearest has a normal turned by more than the crease angle and less
+// than 120 degrees (opposite sheets are not creases).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
-#include <vcg_ext/gaussphere/crease_points.h>
 
 #include "test_support.h"
 
@@ -35,8 +35,8 @@ FlatVector<char> Mark(const gstest::PointSet &s, double angle)
     const PointGrid grid(s.points);
     AdaptiveNeighborParams p;
     p.k = 16;
-    const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, p, grid);
-    return MarkCreasePoints(s.normals, g, angle);
+    p.creaseAngle = angle;
+    return BuildAdaptiveNeighbors(s.points, s.normals, p, grid).crease;
 }
 
 /// Distance of point i from the fold line (the y axis).
@@ -53,6 +53,13 @@ TEST(CreasePoints, SharpFoldMarksTheBandAlongTheEdgeOnly)
         marked += crease[i];
     }
     EXPECT_GT(marked, 0);
+}
+
+TEST(CreasePoints, NoMarksWithoutACreaseAngle)
+{
+    const gstest::PointSet s = Fold(90);
+    const PointGrid grid(s.points);
+    EXPECT_TRUE(BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid).crease.empty());
 }
 
 TEST(CreasePoints, GentleFoldIsNoCrease)

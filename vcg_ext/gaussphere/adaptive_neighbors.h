@@ -5,7 +5,8 @@
 // k slots per point: the k nearest, nearest first, with the ones inside the cone moved
 // to the front. Keeping the rejected ones lets RestrictToCone() re-filter the same search
 // for another Gaussian sphere level without searching again. Each point also gets its
-// local sample spacing, which the surfel stage uses to close the gaps between surfels.
+// local sample spacing, which the surfel stage uses to close the gaps between surfels, and,
+// on request, a mark if it lies at a crease (crease_points.h).
 #ifndef VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
 #define VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
 
@@ -17,6 +18,7 @@
 
 #include <vcg/space/point3.h>
 
+#include "crease_points.h"
 #include "flat_vector.h"
 #include "point_grid.h"
 
@@ -33,6 +35,9 @@ struct NeighborGraph
     /// point whose k neighbours all coincide with it, the median spacing of the others
     /// (or 1e-3 when every point coincides: there is no scale to read).
     FlatVector<float> spacing;
+    /// Per point: 1 if one of its k nearest (inside the cone or not) meets it at a crease
+    /// (CreaseTest), else 0; empty unless AdaptiveNeighborParams::creaseAngle > 0.
+    FlatVector<char> crease;
     double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet);
                                     ///< reset it to -1 if the normals change
 
@@ -45,6 +50,7 @@ struct AdaptiveNeighborParams
 {
     int k = 16;               ///< neighbours examined per point (clamped to [1, 255] and N-1)
     double coneChord = 0.42;  ///< keep q when |n_p - n_q| <= coneChord, i.e. <n_p,n_q> >= 1 - chord^2/2
+    double creaseAngle = 0;   ///< degrees in (0, 120): mark crease points (NeighborGraph::crease); 0: none
 };
 
 /// Replaces zero spacings (points with only coincident neighbours) by the median of the
@@ -135,6 +141,9 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
     g.spacing.resize(n);
     g.chord = param.coneChord;
     const float minDot = ConeMinDot(param.coneChord);
+    const bool markCreases = param.creaseAngle > 0;
+    const CreaseTest atCrease(markCreases ? param.creaseAngle : 90.0);
+    if (markCreases) g.crease.resize(n);
     const bool complete = grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
         int near = 0;
         float sum = 0;
@@ -147,6 +156,8 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
         std::fill(slot + found, slot + g.stride, -1);
         g.found[i] = std::uint8_t(found);
         g.count[i] = std::uint8_t(kept);
+        if (markCreases)
+            g.crease[i] = std::any_of(idx, idx + found, [&](int q) { return atCrease(normals[i].dot(normals[q])); });
     }, progress);
     if (!complete) return NeighborGraph();
     if (std::find(g.spacing.begin(), g.spacing.end(), 0.f) != g.spacing.end()) FillUnknownSpacing(g.spacing);

@@ -57,7 +57,6 @@
 #include "cluster_normalization.h"
 #include "cluster_refinement.h"
 #include "clustering.h"
-#include "crease_points.h"
 #include "flat_vector.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
@@ -294,6 +293,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = param.neighborCount;
     neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
+    neighborParam.creaseAngle = param.creaseAngle;
     NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, grid, [cb](double done) {
         return cb == nullptr || cb(2 + int(40 * done), "Gaussian sphere resampling: neighbour search");
     });
@@ -306,10 +306,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     normalization.threshold = param.normalizationThreshold;
     normalization.minSplitSize = param.minSplitSize;
     normalization.maxClusterSize = param.maxClusterSize;
-    FlatVector<char> creasePoints;
     if (param.creaseAngle > 0) {
-        creasePoints = MarkCreasePoints(normals, graph, param.creaseAngle);
-        normalization.creasePoints = &creasePoints;
+        normalization.creasePoints = &graph.crease;
         normalization.creaseClusterSize = param.creaseClusterSize;
         normalization.creaseMinSplitSize = param.creaseMinSplitSize;
     }
