@@ -24,6 +24,10 @@
 
 #include <vcg/space/point3.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace vcg {
 namespace gaussphere {
 
@@ -132,14 +136,43 @@ private:
     {
         if (base_ == BasePolyhedron::Octahedron)
             return (n[0] < 0 ? 1 : 0) | (n[1] < 0 ? 2 : 0) | (n[2] < 0 ? 4 : 0);
-        // Regular polyhedron: the containing face is the one whose centre is nearest.
+        // Regular polyhedron: the containing face is the one whose centre is nearest, the
+        // first of equals. Four faces at a time where SSE2 is there (x86-64 always): the
+        // same float products and sums as Point3::dot, so the same face.
+#if defined(__SSE2__)
+        const __m128 x = _mm_set1_ps(n[0]), y = _mm_set1_ps(n[1]), z = _mm_set1_ps(n[2]);
+        __m128 bestDot = _mm_set1_ps(-2.f);
+        __m128i bestFace = _mm_setzero_si128(), face = _mm_setr_epi32(0, 1, 2, 3);
+        for (int g = 0; g < kIcosahedronFaces / 4; ++g) {
+            const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, _mm_loadu_ps(centreX_ + 4 * g)),
+                                                   _mm_mul_ps(y, _mm_loadu_ps(centreY_ + 4 * g))),
+                                        _mm_mul_ps(z, _mm_loadu_ps(centreZ_ + 4 * g)));
+            const __m128 better = _mm_cmpgt_ps(d, bestDot);
+            bestDot = _mm_or_ps(_mm_and_ps(better, d), _mm_andnot_ps(better, bestDot));
+            const __m128i take = _mm_castps_si128(better);
+            bestFace = _mm_or_si128(_mm_and_si128(take, face), _mm_andnot_si128(take, bestFace));
+            face = _mm_add_epi32(face, _mm_set1_epi32(4));
+        }
+        float laneDot[4];
+        int laneFace[4];
+        _mm_storeu_ps(laneDot, bestDot);
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(laneFace), bestFace);
+        int best = laneFace[0];
+        for (int l = 1; l < 4; ++l)
+            if (laneDot[l] > laneDot[0] || (laneDot[l] == laneDot[0] && laneFace[l] < best)) {
+                laneDot[0] = laneDot[l];
+                best = laneFace[l];
+            }
+        return best;
+#else
         int best = 0;
-        double bestDot = -2;
-        for (int f = 0; f < int(faces_.size()); ++f) {
-            const double d = n.dot(centres_[f]);
+        float bestDot = -2;
+        for (int f = 0; f < kIcosahedronFaces; ++f) {
+            const float d = n[0] * centreX_[f] + n[1] * centreY_[f] + n[2] * centreZ_[f];
             if (d > bestDot) { bestDot = d; best = f; }
         }
         return best;
+#endif
     }
 
     void AddFace(Point3 a, Point3 b, Point3 c)
@@ -157,8 +190,14 @@ private:
                 const int r1 = (col + 1) % 3, r2 = (col + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
                 f.inv[r][col] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
             }
+        const Point3 centre = (a + b + c).Normalize();
+        const int id = int(faces_.size());
+        if (id < kIcosahedronFaces) {
+            centreX_[id] = centre[0];
+            centreY_[id] = centre[1];
+            centreZ_[id] = centre[2];
+        }
         faces_.push_back(f);
-        centres_.push_back((a + b + c).Normalize());
     }
 
     void BuildBaseFaces()
@@ -186,8 +225,9 @@ private:
     int level_;
     int segments_;
     BasePolyhedron base_;
+    static constexpr int kIcosahedronFaces = 20;
     std::vector<Face> faces_;
-    std::vector<Point3> centres_;
+    float centreX_[kIcosahedronFaces], centreY_[kIcosahedronFaces], centreZ_[kIcosahedronFaces]; // icosahedron only
 };
 
 } // namespace gaussphere
