@@ -74,14 +74,18 @@ inline float ConeMinDot(double chord) { return float(1.0 - 0.5 * chord * chord);
 
 /// Writes the neighbours `ordered[0, found)` of point i into `slot`: those q with
 /// <n_i, n_q> >= minDot first, then the others, each group in its given order. Returns
-/// the number kept. `ordered` and `slot` must not overlap.
-inline int PartitionByCone(const PointArray &normals, int i, float minDot, const int *ordered,
-                           int found, int *slot)
+/// the number kept. `ordered` and `slot` must not overlap. `seeDot(<n_i, n_q>)` is called
+/// for each q, for other uses of the same products.
+template <class DotVisitor>
+int PartitionByCone(const PointArray &normals, int i, float minDot, const int *ordered, int found, int *slot,
+                    DotVisitor &&seeDot)
 {
     int kept = 0, dropped = 0;
     int rejected[255];
     for (int t = 0; t < found; ++t) {
-        if (normals[i].dot(normals[ordered[t]]) >= minDot) slot[kept++] = ordered[t];
+        const float dot = normals[i].dot(normals[ordered[t]]);
+        seeDot(dot);
+        if (dot >= minDot) slot[kept++] = ordered[t];
         else rejected[dropped++] = ordered[t];
     }
     std::copy(rejected, rejected + dropped, slot + kept);
@@ -114,7 +118,7 @@ inline void RestrictToCone(const PointArray &points, const PointArray &normals,
             std::merge(keyed.begin(), keyed.begin() + g.count[i], keyed.begin() + g.count[i], keyed.begin() + found,
                        merged.begin());
             for (int t = 0; t < found; ++t) ordered[t] = int(std::uint32_t(merged[t]));
-            const int kept = PartitionByCone(normals, i, minDot, ordered.data(), found, slot);
+            const int kept = PartitionByCone(normals, i, minDot, ordered.data(), found, slot, [](float) {});
             g.count[i] = std::uint8_t(kept);
         }
     }
@@ -152,12 +156,12 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
         g.spacing[i] = near > 0 ? sum / near : 0.f;
         // The same partition as RestrictToCone, so that it can skip this chord later.
         int *slot = g.adjacency.data() + size_t(i) * g.stride;
-        const int kept = PartitionByCone(normals, i, minDot, idx, found, slot);
+        bool crease = false;
+        const int kept = PartitionByCone(normals, i, minDot, idx, found, slot, [&](float dot) { crease |= atCrease(dot); });
         std::fill(slot + found, slot + g.stride, -1);
         g.found[i] = std::uint8_t(found);
         g.count[i] = std::uint8_t(kept);
-        if (markCreases)
-            g.crease[i] = std::any_of(idx, idx + found, [&](int q) { return atCrease(normals[i].dot(normals[q])); });
+        if (markCreases) g.crease[i] = crease;
     }, progress);
     if (!complete) return NeighborGraph();
     if (std::find(g.spacing.begin(), g.spacing.end(), 0.f) != g.spacing.end()) FillUnknownSpacing(g.spacing);
