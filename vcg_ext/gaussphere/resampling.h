@@ -64,6 +64,7 @@
 #include "singleton_rejoining.h"
 #include "surface_error_bound.h"
 #include "surfel_generation.h"
+#include "surfel_offset.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -88,6 +89,9 @@ struct ResamplingParams
     double coverageMargin = 0.75;    ///< ellipse growth, in local sample spacings
     int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
     double mergeWithin = 1.15;       ///< targetCount: merge down from a level giving at most this x the target
+    bool fitOffsets = true;          ///< surfels moved along their normals to fit the blended surface
+                                     ///< (surfel_offset.h; not with maxErrorFraction, whose bound
+                                     ///< holds for the surfels it checked)
     double maxErrorFraction = 0;     ///< bound on each point's distance to its surfel's plane, then
                                      ///< to the blended surface (surface_error_bound.h), as a fraction
                                      ///< of the bbox diagonal (0 = off)
@@ -446,7 +450,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
-    if (result.surfels.empty()) result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
+    if (result.surfels.empty()) {
+        result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
+        if (param.fitOffsets) FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels);
+    }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {

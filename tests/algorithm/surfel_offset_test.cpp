@@ -1,0 +1,104 @@
+// FitSurfelOffsets: surfels move along their normals to fit the blended surface; planes stay
+// put, the fit converges, crease clusters stay, and the result does not depend on the threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <omp.h>
+
+#include <vcg_ext/gaussphere/point_grid.h>
+#include <vcg_ext/gaussphere/surfel_offset.h>
+
+#include "pipeline_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+
+/// A point set with its neighbour graph, and the clusters and surfels (before any offset
+/// fitting) of a resampling of it.
+struct Fixture
+{
+    gstest::PointSet s;
+    NeighborGraph graph;
+    Clustering clusters;
+    std::vector<Surfel> surfels;
+
+    explicit Fixture(const gstest::PointSet &points, ResamplingParams p = {}) : s(points)
+    {
+        p.fitOffsets = false;
+        const ResamplingResult r = gstest::Resample(s, p);
+        clusters.label.assign(r.representative.begin(), r.representative.end());
+        clusters.clusterCount = int(r.surfels.size());
+        surfels = r.surfels;
+        const PointGrid grid(s.points);
+        graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
+    }
+    int Fit(std::vector<Surfel> &fitted, const FlatVector<char> *crease = nullptr) const
+    {
+        return FitSurfelOffsets(s.points, s.normals, graph, clusters, crease, fitted);
+    }
+};
+
+/// Largest distance between the positions of two lists of surfels.
+double LargestMove(const std::vector<Surfel> &a, const std::vector<Surfel> &b)
+{
+    double largest = 0;
+    for (size_t c = 0; c < a.size(); ++c) largest = std::max(largest, double((a[c].position - b[c].position).Norm()));
+    return largest;
+}
+
+TEST(SurfelOffset, PlaneSurfelsStayOnThePlane)
+{
+    const Fixture f(gstest::PlaneGrid(40, 40, 0.1f));
+    std::vector<Surfel> fitted = f.surfels;
+    f.Fit(fitted);
+    for (const Surfel &s : fitted) EXPECT_NEAR(s.position[2], 0.f, 1e-6f);
+    EXPECT_LT(LargestMove(fitted, f.surfels), 1e-6);
+}
+
+TEST(SurfelOffset, OnACurvedSurfaceTheFitMovesAlongNormalsAndConverges)
+{
+    ResamplingParams p;
+    p.targetCount = 400; // clusters of about ten points: a visible blend bias on the sphere
+    const Fixture f(gstest::FibonacciSphere(4000), p);
+    std::vector<Surfel> once = f.surfels;
+    EXPECT_GT(f.Fit(once), 0);
+    const double first = LargestMove(once, f.surfels);
+    EXPECT_GT(first, 1e-4) << "the blend of surfels on a sphere is off the samples";
+    for (size_t c = 0; c < once.size(); ++c) { // along the normal only
+        const vcg::Point3f move = once[c].position - f.surfels[c].position;
+        EXPECT_LT((move - f.surfels[c].normal * move.dot(f.surfels[c].normal)).Norm(), 1e-6f) << "surfel " << c;
+    }
+    // A second fit from the fitted surfels has less left to correct: the first went the right way.
+    std::vector<Surfel> twice = once;
+    f.Fit(twice);
+    EXPECT_LT(LargestMove(twice, once), 0.5 * first);
+}
+
+TEST(SurfelOffset, CreaseClustersStay)
+{
+    ResamplingParams p;
+    p.targetCount = 400;
+    const Fixture f(gstest::FibonacciSphere(4000), p);
+    const FlatVector<char> everywhere(f.s.Size(), 1);
+    std::vector<Surfel> fitted = f.surfels;
+    EXPECT_EQ(f.Fit(fitted, &everywhere), 0);
+    EXPECT_EQ(LargestMove(fitted, f.surfels), 0.0);
+}
+
+TEST(SurfelOffset, SameResultForAnyThreadCount)
+{
+    ResamplingParams p;
+    p.targetCount = 400;
+    const Fixture f(gstest::FibonacciSphere(4000), p);
+    const int threads = omp_get_max_threads();
+    std::vector<Surfel> one = f.surfels, two = f.surfels;
+    omp_set_num_threads(1);
+    f.Fit(one);
+    omp_set_num_threads(2);
+    f.Fit(two);
+    omp_set_num_threads(threads);
+    EXPECT_EQ(LargestMove(one, two), 0.0);
+}
+
+} // namespace
