@@ -33,7 +33,7 @@ struct Fixture
         const PointGrid grid(s.points);
         graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
     }
-    int Fit(std::vector<Surfel> &fitted, const FlatVector<char> *crease = nullptr) const
+    SurfelOffsetResult Fit(std::vector<Surfel> &fitted, const FlatVector<char> *crease = nullptr) const
     {
         return FitSurfelOffsets(s.points, s.normals, graph, clusters, crease, fitted);
     }
@@ -62,8 +62,10 @@ TEST(SurfelOffset, OnACurvedSurfaceTheFitMovesAlongNormalsAndConverges)
     p.targetCount = 400; // clusters of about ten points: a visible blend bias on the sphere
     const Fixture f(gstest::FibonacciSphere(4000), p);
     std::vector<Surfel> once = f.surfels;
-    EXPECT_GT(f.Fit(once), 0);
+    const SurfelOffsetResult fit = f.Fit(once);
+    EXPECT_GT(fit.moved, 0);
     const double first = LargestMove(once, f.surfels);
+    EXPECT_NEAR(fit.largest, first, 1e-6);
     EXPECT_GT(first, 1e-4) << "the blend of surfels on a sphere is off the samples";
     for (size_t c = 0; c < once.size(); ++c) { // along the normal only
         const vcg::Point3f move = once[c].position - f.surfels[c].position;
@@ -82,7 +84,7 @@ TEST(SurfelOffset, CreaseClustersStay)
     const Fixture f(gstest::FibonacciSphere(4000), p);
     const FlatVector<char> everywhere(f.s.Size(), 1);
     std::vector<Surfel> fitted = f.surfels;
-    EXPECT_EQ(f.Fit(fitted, &everywhere), 0);
+    EXPECT_EQ(f.Fit(fitted, &everywhere).moved, 0);
     EXPECT_EQ(LargestMove(fitted, f.surfels), 0.0);
 }
 

@@ -34,3 +34,21 @@ loose=$(resample "$bunny" loose.surfel "$(script_with MaxError=0.01)")
 grep -q "error bound met: every point within" loose.surfel.log
 grep -q " 0 halving(s) of one-point surfels' blend scales" loose.surfel.log
 echo "bunny: $loose surfels with MaxError 0.01"
+# FitOffsets (on by default) moves surfels along their normals onto the blended surface, and
+# says so; off, the surfels stay at their clusters' centroids: same count, same ellipses.
+grep -q "surfel(s) fitted to the blended surface" plain.surfel.log
+centroids=$(resample "$bunny" centroids.surfel "$(script_with FitOffsets=false)")
+[ "$centroids" = "$plain" ]
+! grep -q "fitted to the blended surface" centroids.surfel.log
+python3 - plain.surfel centroids.surfel <<'PY'
+import struct, sys
+def records(path):
+    data = open(path, "rb").read()
+    body = data[data.index(b"end_header\n") + 11:]
+    return [struct.unpack_from("<13f", body, r) for r in range(0, len(body), 64)]
+fitted, plain = records(sys.argv[1]), records(sys.argv[2])
+moves = [sum((a[k] - b[k]) ** 2 for k in range(3)) ** 0.5 for a, b in zip(fitted, plain)]
+print("fitted surfels: %d of %d moved, longest move %g" % (sum(m > 0 for m in moves), len(moves), max(moves)))
+assert sum(m > 0 for m in moves) > len(moves) // 2 and max(moves) < 0.01   # the bunny is ~0.25 across
+assert all(a[3:13] == b[3:13] for a, b in zip(fitted, plain))               # normals, radius, axes unchanged
+PY

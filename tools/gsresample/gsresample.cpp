@@ -4,7 +4,7 @@
 //              [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]
 //              [--crease-min-split S] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
-//              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL]
+//              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
 //
 // Writes the surfels as a PLY point set with normals and radius (the ellipse axes
 // are not part of a standard PLY; use MeshLab with io_surfel for .surfel files) and
@@ -28,7 +28,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]"
                              " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S]"
                              " [--iterations I] [--base octahedron|icosahedron]"
-                             " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION]\n", argv[0]);
+                             " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION] [--fit-offsets 0|1]\n", argv[0]);
         return 2;
     }
     ResamplingParams param;
@@ -48,6 +48,7 @@ int main(int argc, char **argv)
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);
         else if (key == "--target") param.targetCount = std::stoi(value);
         else if (key == "--max-error") param.maxErrorFraction = std::stod(value);
+        else if (key == "--fit-offsets") param.fitOffsets = value != "0";
         else if (key == "--base") param.base = value == "icosahedron" ? BasePolyhedron::Icosahedron : BasePolyhedron::Octahedron;
         else if (key == "--reference") param.reference = value == "current" ? PropagationReference::CurrentPoint : PropagationReference::Seed;
         else if (key == "--order") param.order = value == "bfs" ? PropagationOrder::BreadthFirst : PropagationOrder::DepthFirst;

@@ -140,6 +140,8 @@ struct ResamplingStats
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
     double diagonal = 0;           ///< bounding-box diagonal of the usable points
+    int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
+    double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
@@ -452,7 +454,11 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
         result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
-        if (param.fitOffsets) FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels);
+        if (param.fitOffsets) {
+            const SurfelOffsetResult fit = FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels);
+            stats.surfelsFitted = fit.moved;
+            stats.largestFitMove = stats.diagonal > 0 ? fit.largest / stats.diagonal : 0.0;
+        }
     }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)
