@@ -120,7 +120,7 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "and the Surfel Approximation Error filter draw it) passes through the input points on average, "
         "instead of leaving the surfel at its cluster's centroid, which lies inside curved surfaces. Halves "
         "the distance error on smooth scans at little cost; clusters at sharp creases keep their place. "
-        "Not applied with a Maximum error, whose bound holds for the surfels it checked."));
+        "With a Maximum error the surfels are fitted in every round of its check, so the bound holds for them."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));
 }

@@ -33,9 +33,20 @@ struct Fixture
         const PointGrid grid(s.points);
         graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
     }
-    SurfelOffsetResult Fit(std::vector<Surfel> &fitted, const FlatVector<char> *crease = nullptr) const
+    SurfelOffsetResult Fit(std::vector<Surfel> &fitted, const FlatVector<char> *crease = nullptr,
+                           double maxPlaneDistance = 0) const
     {
-        return FitSurfelOffsets(s.points, s.normals, graph, clusters, crease, fitted);
+        return FitSurfelOffsets(s.points, s.normals, graph, clusters, crease, fitted, maxPlaneDistance);
+    }
+    /// The largest distance of a point to its surfel's plane.
+    double LargestPlaneDistance(const std::vector<Surfel> &fitted) const
+    {
+        double largest = 0;
+        for (int i = 0; i < s.Size(); ++i) {
+            const Surfel &f = fitted[clusters.label[i]];
+            largest = std::max(largest, std::abs(double((s.points[i] - f.position).dot(f.normal))));
+        }
+        return largest;
     }
 };
 
@@ -75,6 +86,19 @@ TEST(SurfelOffset, OnACurvedSurfaceTheFitMovesAlongNormalsAndConverges)
     std::vector<Surfel> twice = once;
     f.Fit(twice);
     EXPECT_LT(LargestMove(twice, once), 0.5 * first);
+}
+
+TEST(SurfelOffset, MovesKeepEveryMemberWithinAPlaneDistance)
+{
+    ResamplingParams p;
+    p.targetCount = 400;
+    const Fixture f(gstest::FibonacciSphere(4000), p);
+    const double before = f.LargestPlaneDistance(f.surfels);
+    std::vector<Surfel> free = f.surfels, bounded = f.surfels;
+    f.Fit(free);
+    ASSERT_GT(f.LargestPlaneDistance(free), before) << "unbounded, some member ends farther: the test can fail";
+    EXPECT_GT(f.Fit(bounded, nullptr, before).moved, 0);
+    EXPECT_LE(f.LargestPlaneDistance(bounded), before);
 }
 
 TEST(SurfelOffset, CreaseClustersStay)

@@ -90,8 +90,8 @@ struct ResamplingParams
     int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
     double mergeWithin = 1.15;       ///< targetCount: merge down from a level giving at most this x the target
     bool fitOffsets = true;          ///< surfels moved along their normals to fit the blended surface
-                                     ///< (surfel_offset.h; not with maxErrorFraction, whose bound
-                                     ///< holds for the surfels it checked)
+                                     ///< (surfel_offset.h; with maxErrorFraction, in each round of
+                                     ///< its check, so that the bound holds for the moved surfels)
     double maxErrorFraction = 0;     ///< bound on each point's distance to its surfel's plane, then
                                      ///< to the blended surface (surface_error_bound.h), as a fraction
                                      ///< of the bbox diagonal (0 = off)
@@ -421,6 +421,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     SurfelGenerationParams surfelParam;
     surfelParam.weightWidth = weightWidth;
     surfelParam.coverageMargin = param.coverageMargin;
+    auto recordFit = [&stats](const SurfelOffsetResult &fit) {
+        stats.surfelsFitted = fit.moved;
+        stats.largestFitMove = stats.diagonal > 0 ? fit.largest / stats.diagonal : 0.0;
+    };
     if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
         detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(points, normals, clusters, invH2);
@@ -436,6 +440,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
                 [cb](int round, double) {
                     return cb == nullptr ||
                            cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
+                },
+                [&](std::vector<Surfel> &surfels) {
+                    if (param.fitOffsets)
+                        recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, surfels, bound));
                 });
             if (surface.cancelled) throw ResamplingCancelled();
             stats.splitsForSurfaceBound = surface.splits;
@@ -454,11 +462,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
         result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
-        if (param.fitOffsets) {
-            const SurfelOffsetResult fit = FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels);
-            stats.surfelsFitted = fit.moved;
-            stats.largestFitMove = stats.diagonal > 0 ? fit.largest / stats.diagonal : 0.0;
-        }
+        if (param.fitOffsets) recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels));
     }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)

@@ -62,7 +62,9 @@ struct SurfaceErrorBoundResult
 /// narrowed, or after maxRounds projections. `progress(r, f)` is
 /// called from the calling thread during projection round r (from 1) with the fraction f of
 /// points projected so far; when it returns false the refinement stops at once and the result
-/// has cancelled = true (its figures are then partial).
+/// has cancelled = true (its figures are then partial). `fitSurfels`, if given, adjusts each
+/// round's surfels before they are checked (the resampler's FitSurfelOffsets): the figures and
+/// the bound are those of the adjusted surfels.
 /// \pre points and normals (unit) as given to the refiner; spacing as for GenerateSurfels;
 ///      maxDistance > 0; the points' bounding-box diagonal `diagonal` > 0.
 /// \post Deterministic: the result does not depend on the thread count.
@@ -72,7 +74,8 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
                                                         const SurfelGenerationParams &surfelParam,
                                                         double maxDistance, double diagonal, int maxRounds,
                                                         ClusterRefiner &refiner, Clustering &clusters,
-                                                        const std::function<bool(int, double)> &progress = nullptr)
+                                                        const std::function<bool(int, double)> &progress = nullptr,
+                                                        const std::function<void(std::vector<Surfel> &)> &fitSurfels = nullptr)
 {
     const vcg::tri::SurfelErrorParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
@@ -84,6 +87,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
     for (;;) {
         blendScale.resize(clusters.clusterCount, 1.f);
         result.surfels = GenerateSurfels(points, normals, spacing, clusters, narrowedParam);
+        if (fitSurfels) fitSurfels(result.surfels);
         std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
         for (const Surfel &s : result.surfels) {
             centers.push_back(s.position);

@@ -55,9 +55,10 @@ struct BlendWeight
     explicit BlendWeight(const Surfel &s) : centre(s.position), normal(s.normal)
     {
         const float sigma2 = float(kBlendWidthFactor * kBlendWidthFactor);
-        const float major2 = s.majorAxis.SquaredNorm(), minor2 = s.minorAxis.SquaredNorm();
+        const float scale2 = s.blendScale * s.blendScale; // the blend's widths only (surface_error_bound.h)
+        const float major2 = scale2 * s.majorAxis.SquaredNorm(), minor2 = scale2 * s.minorAxis.SquaredNorm();
         if (!(major2 > 0) || !(minor2 > 0)) return; // no extent: a weight of 1 everywhere
-        minorDirection = s.minorAxis / std::sqrt(minor2);
+        minorDirection = s.minorAxis / s.minorAxis.Norm();
         inverseMajor2 = 1.f / (sigma2 * major2);
         minorExcess = 1.f / (sigma2 * minor2) - inverseMajor2;
     }
@@ -85,13 +86,15 @@ struct SurfelOffsetResult
 
 /// Moves each surfel along its normal by the mean signed distance of sampled members of its
 /// cluster to the blended plane at them (file header). Surfels of clusters with a point marked
-/// in `creasePoints` (null: none) stay.
+/// in `creasePoints` (null: none) stay, and so do those whose blend is narrowed (blendScale < 1).
+/// With maxPlaneDistance > 0 a move is cut short where a member would get farther than that
+/// from its surfel's plane (none was before: the error bound's own-plane stage holds).
 /// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); `graph` is the
 ///      neighbour graph of `points` (unit `normals`); creasePoints, if given, has one flag per point.
 /// \post Only positions change; the result does not depend on the thread count.
 inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                             const Clustering &clusters, const FlatVector<char> *creasePoints,
-                            std::vector<Surfel> &surfels)
+                            std::vector<Surfel> &surfels, double maxPlaneDistance = 0)
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
@@ -105,7 +108,8 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
         float exponent[kOffsetNeighbors + 1];
 #pragma omp for schedule(dynamic, 256)
         for (int c = 0; c < count; ++c) {
-            bool atCrease = false;
+            // A narrowed blend already follows its surfel closely (the error bound's doing).
+            bool atCrease = surfels[c].blendScale < 1;
             if (creasePoints)
                 for (const int *i = members.begin(c); i != members.end(c) && !atCrease; ++i) atCrease = (*creasePoints)[*i];
             if (atCrease) continue;
@@ -141,7 +145,22 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                 const float length = normal.Norm();
                 if (length > 0) sum += (p - centre / weightSum).dot(normal / length);
             }
-            offset[c] = float(sum / sampled);
+            double move = sum / sampled;
+            if (maxPlaneDistance > 0) {
+                // Members at heights h above the plane stay within the bound for moves in
+                // [max h - bound, min h + bound], which holds 0 (within the 1 % kept in hand, or
+                // the surfel stays).
+                double lowest = 0, highest = 0;
+                for (const int *m = members.begin(c); m != members.end(c); ++m) {
+                    const double h = (points[*m] - surfels[c].position).dot(surfels[c].normal);
+                    lowest = m == members.begin(c) ? h : std::min(lowest, h);
+                    highest = m == members.begin(c) ? h : std::max(highest, h);
+                }
+                const double room = 0.99 * maxPlaneDistance; // the float position rounds the move
+                const double least = highest - room, most = lowest + room;
+                move = least <= most ? std::max(least, std::min(move, most)) : 0.0;
+            }
+            offset[c] = float(move);
         }
     }
     SurfelOffsetResult result;
