@@ -92,9 +92,10 @@ struct SurfelOffsetResult
 /// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); `graph` is the
 ///      neighbour graph of `points` (unit `normals`); creasePoints, if given, has one flag per point.
 /// \post Only positions change; the result does not depend on the thread count.
-inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
-                            const Clustering &clusters, const FlatVector<char> *creasePoints,
-                            std::vector<Surfel> &surfels, double maxPlaneDistance = 0)
+inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals,
+                                           const NeighborGraph &graph, const Clustering &clusters,
+                                           const FlatVector<char> *creasePoints, std::vector<Surfel> &surfels,
+                                           double maxPlaneDistance = 0)
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
@@ -109,10 +110,10 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
 #pragma omp for schedule(dynamic, 256)
         for (int c = 0; c < count; ++c) {
             // A narrowed blend already follows its surfel closely (the error bound's doing).
-            bool atCrease = surfels[c].blendScale < 1;
+            bool stays = surfels[c].blendScale < 1;
             if (creasePoints)
-                for (const int *i = members.begin(c); i != members.end(c) && !atCrease; ++i) atCrease = (*creasePoints)[*i];
-            if (atCrease) continue;
+                for (const int *i = members.begin(c); i != members.end(c) && !stays; ++i) stays = (*creasePoints)[*i];
+            if (stays) continue;
             double sum = 0;
             const int size = members.Size(c), stride = (size + kOffsetSamples - 1) / kOffsetSamples;
             int sampled = 0;
