@@ -118,8 +118,9 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichBool("FitOffsets", defaults.fitOffsets, "Fit surfels to the blended surface",
         "Move each surfel along its normal so that the surface the surfels blend into (as splat renderers "
         "and the Surfel Approximation Error filter draw it) passes through the input points on average, "
-        "instead of leaving the surfel at its cluster's centroid, which lies inside curved surfaces. Halves "
-        "the distance error on smooth scans at little cost; clusters at sharp creases keep their place. "
+        "instead of leaving the surfel at its cluster's centroid, which lies inside curved surfaces. Lowers "
+        "the distance error of smooth scans by a quarter to a third at little cost; clusters at sharp creases "
+        "keep their place. "
         "With a Maximum error the surfels are fitted in every round of its check, so the bound holds for them."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));

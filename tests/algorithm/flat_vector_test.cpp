@@ -4,6 +4,10 @@
 
 #include <cstdint>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include <vcg_ext/gaussphere/flat_vector.h>
 
 using vcg::gaussphere::FlatVector;
@@ -33,12 +37,20 @@ TEST(FlatVector, GrowingAcrossTheLargeThresholdKeepsTheValues)
     EXPECT_EQ(v[9], 27);
 }
 
-#if defined(__linux__)
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+/// Whether the page at p is mapped (mincore fails with ENOMEM on unmapped memory).
+bool Mapped(const void *p)
+{
+    unsigned char resident;
+    return mincore(const_cast<void *>(p), 4096, &resident) == 0;
+}
+
 TEST(FlatVector, FreedLargeBuffersAreReusedOnlyInsideAReuseScope)
 {
     using vcg::gaussphere::ReuseLargeBuffers;
     using Cache = vcg::gaussphere::detail::LargeBufferCache;
     const size_t quarterPage = (size_t(2) << 20) / 4 / sizeof(int); // 512 KB: a 2 MB mapping
+    const void *keptBuffer = nullptr;
     {
         const ReuseLargeBuffers reuse;
         const int *freed;
@@ -58,10 +70,12 @@ TEST(FlatVector, FreedLargeBuffersAreReusedOnlyInsideAReuseScope)
             FlatVector<int> third(quarterPage);
         }
         void *kept = Cache::Instance().Take(size_t(2) << 20);
-        EXPECT_NE(kept, nullptr);
-        Cache::Instance().Keep(kept, size_t(2) << 20);
+        ASSERT_NE(kept, nullptr);
+        EXPECT_TRUE(Cache::Instance().Keep(kept, size_t(2) << 20));
+        keptBuffer = kept;
     }
     // The last scope unmapped what it kept, and nothing is kept without a scope.
+    EXPECT_FALSE(Mapped(keptBuffer));
     EXPECT_EQ(Cache::Instance().Take(size_t(2) << 20), nullptr);
     {
         FlatVector<int> unscoped(quarterPage);

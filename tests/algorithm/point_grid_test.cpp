@@ -137,6 +137,21 @@ TEST(PointGrid, PlanarGridMatchesBruteForce)
     ExpectExactAllKNearest(pts, 16);
 }
 
+// Integer coordinates make exact ties, which counting ranks cannot order: at k = 12 the 12
+// nearest of an inner point are 4 at distance 1, 4 at sqrt 2 and 4 at 2, so ties lie inside
+// the k nearest with none across the k-th (what the sum of the ranks catches); at k = 16 the
+// next four (sqrt 5, of eight) cross it (what the count catches).
+TEST(PointGrid, ExactTiesMatchBruteForce)
+{
+    PointArray pts;
+    for (int x = 0; x < 24; ++x)
+        for (int y = 0; y < 24; ++y) pts.push_back(P3(float(x), float(y), 0));
+    for (int k : {12, 16}) {
+        SCOPED_TRACE(k);
+        ExpectExactAllKNearest(pts, k);
+    }
+}
+
 // The portable loops (used on CPUs without AVX2) give the same exact answers as the AVX2
 // kernels: the cases above again, with the kernels switched off.
 TEST(PointGrid, PortableKernelsMatchBruteForce)
@@ -152,6 +167,10 @@ TEST(PointGrid, PortableKernelsMatchBruteForce)
     for (int x = 0; x < 40; ++x)
         for (int y = 0; y < 40; ++y) planar.push_back(P3(x * 0.1f, y * 0.1f, 0));
     ExpectExactAllKNearest(planar, 16);
+    PointArray integer;
+    for (int x = 0; x < 24; ++x)
+        for (int y = 0; y < 24; ++y) integer.push_back(P3(float(x), float(y), 0));
+    for (int k : {12, 16}) ExpectExactAllKNearest(integer, k);
     avx2 = before;
 }
 

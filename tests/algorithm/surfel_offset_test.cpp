@@ -3,16 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <omp.h>
 
 #include <vcg_ext/gaussphere/point_grid.h>
 #include <vcg_ext/gaussphere/surfel_offset.h>
+#include <vcg_ext/surfel_error/surfel_error.h>
 
 #include "pipeline_support.h"
 
 namespace {
 
 using namespace vcg::gaussphere;
+using gstest::P3;
 
 /// A point set with its neighbour graph, and the clusters and surfels (before any offset
 /// fitting) of a resampling of it.
@@ -101,15 +102,48 @@ TEST(SurfelOffset, MovesKeepEveryMemberWithinAPlaneDistance)
     EXPECT_LE(f.LargestPlaneDistance(bounded), before);
 }
 
-TEST(SurfelOffset, CreaseClustersStay)
+TEST(SurfelOffset, CreaseClustersAndNarrowedSurfelsStay)
 {
     ResamplingParams p;
     p.targetCount = 400;
     const Fixture f(gstest::FibonacciSphere(4000), p);
-    const FlatVector<char> everywhere(f.s.Size(), 1);
+    // One crease point (the last member) in every other cluster; every third surfel narrowed.
+    FlatVector<char> crease(f.s.Size(), 0);
+    std::vector<int> lastMember(f.surfels.size(), -1);
+    for (int i = 0; i < f.s.Size(); ++i) lastMember[f.clusters.label[i]] = i;
     std::vector<Surfel> fitted = f.surfels;
-    EXPECT_EQ(f.Fit(fitted, &everywhere).moved, 0);
-    EXPECT_EQ(LargestMove(fitted, f.surfels), 0.0);
+    for (size_t c = 0; c < fitted.size(); ++c) {
+        if (c % 2 == 0) crease[lastMember[c]] = 1;
+        if (c % 3 == 0) fitted[c].blendScale = 0.5f;
+    }
+    const std::vector<Surfel> before = fitted;
+    const SurfelOffsetResult fit = f.Fit(fitted, &crease);
+    int free = 0;
+    for (size_t c = 0; c < fitted.size(); ++c) {
+        const bool stays = c % 2 == 0 || c % 3 == 0;
+        const bool moved = !(fitted[c].position == before[c].position);
+        free += !stays;
+        if (stays) EXPECT_FALSE(moved) << "surfel " << c;
+        else EXPECT_TRUE(moved) << "surfel " << c;
+    }
+    EXPECT_EQ(fit.moved, free);
+}
+
+// The blend weights are the metric's (vcg_ext/surfel_error): the same exponent at any offset.
+TEST(SurfelOffset, WeightsAreTheMetrics)
+{
+    Surfel s;
+    s.position = P3(0.1f, -0.2f, 0.3f);
+    s.normal = P3(0, 0, 1);
+    s.majorAxis = P3(0.06f, 0.08f, 0);   // length 0.1
+    s.minorAxis = P3(-0.024f, 0.018f, 0); // length 0.03
+    const vcg::tri::SurfelSurface surface = vcg::tri::MakeEllipseSurfelSurface(
+        {s.position, s.position + P3(1, 0, 0)}, {s.normal, s.normal}, {s.majorAxis, s.majorAxis}, {s.minorAxis, s.minorAxis});
+    const detail::BlendWeight weight(s);
+    for (const P3 &x : {P3(0.1f, -0.2f, 0.3f), P3(0.15f, -0.1f, 0.32f), P3(0.05f, -0.22f, 0.25f), P3(0.3f, 0, 0.3f)}) {
+        const double expected = surface[0].WeightExponent(vcg::Point3d::Construct(x));
+        EXPECT_NEAR(weight.Exponent(x), expected, 1e-4 * (1 + expected)) << x[0] << " " << x[1] << " " << x[2];
+    }
 }
 
 TEST(SurfelOffset, SameResultForAnyThreadCount)
@@ -117,13 +151,15 @@ TEST(SurfelOffset, SameResultForAnyThreadCount)
     ResamplingParams p;
     p.targetCount = 400;
     const Fixture f(gstest::FibonacciSphere(4000), p);
-    const int threads = omp_get_max_threads();
     std::vector<Surfel> one = f.surfels, two = f.surfels;
-    omp_set_num_threads(1);
-    f.Fit(one);
-    omp_set_num_threads(2);
-    f.Fit(two);
-    omp_set_num_threads(threads);
+    {
+        const gstest::ThreadCount threads(1);
+        f.Fit(one);
+    }
+    {
+        const gstest::ThreadCount threads(2);
+        f.Fit(two);
+    }
     EXPECT_EQ(LargestMove(one, two), 0.0);
 }
 

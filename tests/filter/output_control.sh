@@ -39,7 +39,7 @@ echo "bunny: $loose surfels with MaxError 0.01"
 grep -q "surfel(s) fitted to the blended surface" plain.surfel.log
 centroids=$(resample "$bunny" centroids.surfel "$(script_with FitOffsets=false)")
 [ "$centroids" = "$plain" ]
-! grep -q "fitted to the blended surface" centroids.surfel.log
+if grep -q "fitted to the blended surface" centroids.surfel.log; then exit 1; fi
 python3 - plain.surfel centroids.surfel <<'PY'
 import struct, sys
 def records(path):

@@ -48,7 +48,7 @@ int main(int argc, char **argv)
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);
         else if (key == "--target") param.targetCount = std::stoi(value);
         else if (key == "--max-error") param.maxErrorFraction = std::stod(value);
-        else if (key == "--fit-offsets") param.fitOffsets = value != "0";
+        else if (key == "--fit-offsets") param.fitOffsets = value != "0" && value != "false" && value != "off";
         else if (key == "--base") param.base = value == "icosahedron" ? BasePolyhedron::Icosahedron : BasePolyhedron::Octahedron;
         else if (key == "--reference") param.reference = value == "current" ? PropagationReference::CurrentPoint : PropagationReference::Seed;
         else if (key == "--order") param.order = value == "bfs" ? PropagationOrder::BreadthFirst : PropagationOrder::DepthFirst;

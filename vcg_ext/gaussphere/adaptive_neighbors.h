@@ -157,7 +157,8 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
         // The same partition as RestrictToCone, so that it can skip this chord later.
         int *slot = g.adjacency.data() + size_t(i) * g.stride;
         bool crease = false;
-        const int kept = PartitionByCone(normals, i, minDot, idx, found, slot, [&](float dot) { crease |= atCrease(dot); });
+        const int kept = markCreases ? PartitionByCone(normals, i, minDot, idx, found, slot, [&](float dot) { crease |= atCrease(dot); })
+                                     : PartitionByCone(normals, i, minDot, idx, found, slot, [](float) {});
         std::fill(slot + found, slot + g.stride, -1);
         g.found[i] = std::uint8_t(found);
         g.count[i] = std::uint8_t(kept);

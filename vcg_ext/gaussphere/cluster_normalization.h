@@ -31,7 +31,7 @@ struct ClusterNormalizationParams
     double threshold = 6.0;  ///< split when lambda1 / lambda2 exceeds it (the paper's 6.0)
     int minSplitSize = 6;    ///< clusters with fewer points are never split
     int maxClusterSize = 0;  ///< clusters with more points are split whatever their shape (0 = off)
-    /// Per point: at a crease (MarkCreasePoints); null: no crease limits.
+    /// Per point: at a crease (NeighborGraph::crease); null: no crease limits.
     const FlatVector<char> *creasePoints = nullptr;
     int creaseClusterSize = 5;   ///< maxClusterSize of clusters holding a crease point (0 = off)
     int creaseMinSplitSize = 4;  ///< minSplitSize of clusters holding a crease point

@@ -54,8 +54,9 @@ public:
 
     static LargeBufferCache &Instance()
     {
-        static LargeBufferCache cache;
-        return cache;
+        // Never destroyed: a static FlatVector may free its buffer after the end of main().
+        static LargeBufferCache *cache = new LargeBufferCache;
+        return *cache;
     }
     /// A kept mapping of exactly `size` bytes, or null.
     void *Take(std::size_t size)
@@ -141,6 +142,8 @@ public:
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     ReuseLargeBuffers() { detail::LargeBufferCache::Instance().Enter(); }
     ~ReuseLargeBuffers() { detail::LargeBufferCache::Instance().Leave(); }
+#else
+    ReuseLargeBuffers() {}
 #endif
     ReuseLargeBuffers(const ReuseLargeBuffers &) = delete;
     ReuseLargeBuffers &operator=(const ReuseLargeBuffers &) = delete;

@@ -227,7 +227,7 @@ private:
     BasePolyhedron base_;
     static constexpr int kIcosahedronFaces = 20;
     std::vector<Face> faces_;
-    float centreX_[kIcosahedronFaces], centreY_[kIcosahedronFaces], centreZ_[kIcosahedronFaces]; // icosahedron only
+    float centreX_[kIcosahedronFaces] = {}, centreY_[kIcosahedronFaces] = {}, centreZ_[kIcosahedronFaces] = {}; // icosahedron only
 };
 
 } // namespace gaussphere

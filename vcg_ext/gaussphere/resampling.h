@@ -7,6 +7,9 @@
 //   3. cluster normalization + singleton rejoining, iterated until
 //      the cluster count changes by less than a fraction of N      cluster_normalization.h
 //   4. one elliptical surfel per cluster                            surfel_generation.h
+//   beyond the paper: an exact size or an error bound              cluster_refinement.h,
+//                                                                   surface_error_bound.h
+//   and surfels fitted to the blended surface                       surfel_offset.h
 //
 // Usage:
 //   vcg::gaussphere::ResamplingParams param;          // the paper's defaults

@@ -10,8 +10,9 @@
 // mean signed distance, the least-squares offset of that surfel for the blend it takes part in.
 //
 // The blended plane at a point is one step of the projection of vcg_ext/surfel_error: the
-// Gaussian-weighted mean of the surfels around it (its own and those of its 8 nearest
-// neighbours' clusters, on its side of a thin part), weights sized by each ellipse; and two
+// Gaussian-weighted mean of the surfels around it (its own and those of the clusters of its
+// first 8 neighbour slots: the nearest inside its cone of normals, then the nearest outside it;
+// on its side of a thin part), weights sized by each ellipse; and two
 // members per cluster are compared, not all. The full projection of every member (iterated,
 // onto the 8 nearest surfel centres) took 0.2 s on the igea, three times the whole resampling;
 // this costs a few milliseconds and keeps most of the gain (Delta*RMS of rocker_arm at 20 %:
@@ -57,7 +58,8 @@ struct BlendWeight
         const float sigma2 = float(kBlendWidthFactor * kBlendWidthFactor);
         const float scale2 = s.blendScale * s.blendScale; // the blend's widths only (surface_error_bound.h)
         const float major2 = scale2 * s.majorAxis.SquaredNorm(), minor2 = scale2 * s.minorAxis.SquaredNorm();
-        if (!(major2 > 0) || !(minor2 > 0)) return; // no extent: a weight of 1 everywhere
+        // GenerateSurfels' axes are never zero; should one be, the surfel weighs 1 everywhere.
+        if (!(major2 > 0) || !(minor2 > 0)) return;
         minorDirection = s.minorAxis / s.minorAxis.Norm();
         inverseMajor2 = 1.f / (sigma2 * major2);
         minorExcess = 1.f / (sigma2 * minor2) - inverseMajor2;
@@ -87,8 +89,10 @@ struct SurfelOffsetResult
 /// Moves each surfel along its normal by the mean signed distance of sampled members of its
 /// cluster to the blended plane at them (file header). Surfels of clusters with a point marked
 /// in `creasePoints` (null: none) stay, and so do those whose blend is narrowed (blendScale < 1).
-/// With maxPlaneDistance > 0 a move is cut short where a member would get farther than that
-/// from its surfel's plane (none was before: the error bound's own-plane stage holds).
+/// With maxPlaneDistance > 0 no member ends farther than that from its surfel's plane (none was
+/// before: the error bound's own-plane stage holds): a move is cut short so that every member
+/// stays within 0.99 x maxPlaneDistance (the rest absorbs the rounding of the float position),
+/// and where none can, the surfel stays.
 /// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); `graph` is the
 ///      neighbour graph of `points` (unit `normals`); creasePoints, if given, has one flag per point.
 /// \post Only positions change; the result does not depend on the thread count.
@@ -115,10 +119,10 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                 for (const int *i = members.begin(c); i != members.end(c) && !stays; ++i) stays = (*creasePoints)[*i];
             if (stays) continue;
             double sum = 0;
-            const int size = members.Size(c), stride = (size + kOffsetSamples - 1) / kOffsetSamples;
+            const int size = members.Size(c), stride = std::max(1, (size + kOffsetSamples - 1) / kOffsetSamples);
             int sampled = 0;
-            for (const int *m = members.begin(c); m < members.end(c); m += stride, ++sampled) {
-                const int i = *m;
+            for (int t = 0; t < size; t += stride, ++sampled) {
+                const int i = members.begin(c)[t];
                 const vcg::Point3f &p = points[i];
                 int blended = 1;
                 around[0] = c;
@@ -130,15 +134,15 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                         weight[l].normal.dot(normals[i]) > 0)
                         around[blended++] = l;
                 }
-                float lightest = 0; // the smallest exponent: weights relative to the heaviest surfel
+                float smallest = 0; // exponent of the heaviest surfel: the weights are relative to it
                 for (int t = 0; t < blended; ++t) {
                     exponent[t] = weight[around[t]].Exponent(p);
-                    lightest = t == 0 ? exponent[t] : std::min(lightest, exponent[t]);
+                    smallest = t == 0 ? exponent[t] : std::min(smallest, exponent[t]);
                 }
                 float weightSum = 0;
                 vcg::Point3f centre(0, 0, 0), normal(0, 0, 0);
                 for (int t = 0; t < blended; ++t) {
-                    const float w = std::exp(lightest - exponent[t]);
+                    const float w = std::exp(smallest - exponent[t]);
                     weightSum += w;
                     centre += weight[around[t]].centre * w;
                     normal += weight[around[t]].normal * w;
@@ -146,11 +150,13 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                 const float length = normal.Norm();
                 if (length > 0) sum += (p - centre / weightSum).dot(normal / length);
             }
+            if (sampled == 0) continue; // (an empty cluster)
             double move = sum / sampled;
             if (maxPlaneDistance > 0) {
                 // Members at heights h above the plane stay within the bound for moves in
-                // [max h - bound, min h + bound], which holds 0 (within the 1 % kept in hand, or
-                // the surfel stays).
+                // [max h - bound, min h + bound], which holds 0. With 1 % kept in hand, a member
+                // in the last 1 % may make the move one that brings it back (or, with members in
+                // the last 1 % on both sides, the surfel stays).
                 double lowest = 0, highest = 0;
                 for (const int *m = members.begin(c); m != members.end(c); ++m) {
                     const double h = (points[*m] - surfels[c].position).dot(surfels[c].normal);
