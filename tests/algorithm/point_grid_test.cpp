@@ -199,3 +199,24 @@ TEST(PointGrid, FarOutlierDoesNotStretchTheCells)
 }
 
 } // namespace
+
+// The Morton order comes from a radix sort that runs in parallel from 65,536 points on: the same
+// order for any thread count, and every point once.
+TEST(PointGrid, OrderIsTheSameForAnyThreadCount)
+{
+    const PointArray pts = SpherePoints(100000, 3);
+    IndexArray reference;
+    for (int threads : {1, 2, 3}) {
+        SCOPED_TRACE(threads);
+        const gstest::ThreadCount count(threads);
+        const PointGrid grid(pts);
+        if (reference.empty()) {
+            reference = grid.Order();
+            std::vector<char> seen(pts.size(), 0);
+            for (int i : reference) seen[i] = 1;
+            EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), long(pts.size()));
+        } else {
+            EXPECT_TRUE(grid.Order() == reference);
+        }
+    }
+}

@@ -125,6 +125,7 @@ public:
         SortByKeyStable(keyed); // index order within a cell, as the pairs were made
         stepDone();
         order_.resize(n);
+#pragma omp parallel for schedule(static)
         for (int s = 0; s < inside; ++s) order_[s] = keyed[s].second;
         std::copy(far_.begin(), far_.end(), order_.begin() + inside); // outliers last, in no cell
         for (int s = 0; s < inside; ++s)
@@ -312,16 +313,37 @@ private:
     {
         constexpr int kDigitBits = 11;
         constexpr size_t kBuckets = size_t(1) << kDigitBits;
+        const size_t n = keyed.size();
+        // Each thread counts and moves one range of the entries, after those of the ranges
+        // before it in every bucket: stable, and the same order for any thread count.
+        const int ranges = n < (size_t(1) << 16) ? 1 : std::max(1, omp_get_max_threads());
+        const auto rangeBegin = [n, ranges](int r) { return n * size_t(r) / size_t(ranges); };
         std::uint64_t used = 0;
-        for (const auto &entry : keyed) used |= entry.first;
-        FlatVector<std::pair<std::uint64_t, int>> scratch(keyed.size());
-        std::vector<size_t> start(kBuckets);
+#pragma omp parallel for num_threads(ranges) schedule(static) reduction(| : used)
+        for (size_t e = 0; e < n; ++e) used |= keyed[e].first;
+        FlatVector<std::pair<std::uint64_t, int>> scratch(n);
+        std::vector<size_t> start(kBuckets * size_t(ranges)); // [range][bucket]
         for (int shift = 0; shift < 64 && (used >> shift) != 0; shift += kDigitBits) {
-            std::fill(start.begin(), start.end(), 0);
-            for (const auto &entry : keyed) ++start[(entry.first >> shift) & (kBuckets - 1)];
+#pragma omp parallel for num_threads(ranges) schedule(static, 1)
+            for (int r = 0; r < ranges; ++r) {
+                size_t *counted = start.data() + size_t(r) * kBuckets;
+                std::fill(counted, counted + kBuckets, 0);
+                for (size_t e = rangeBegin(r); e < rangeBegin(r + 1); ++e) ++counted[(keyed[e].first >> shift) & (kBuckets - 1)];
+            }
             size_t offset = 0;
-            for (size_t &b : start) { const size_t count = b; b = offset; offset += count; }
-            for (const auto &entry : keyed) scratch[start[(entry.first >> shift) & (kBuckets - 1)]++] = entry;
+            for (size_t b = 0; b < kBuckets; ++b)
+                for (int r = 0; r < ranges; ++r) {
+                    size_t &slot = start[size_t(r) * kBuckets + b];
+                    const size_t count = slot;
+                    slot = offset;
+                    offset += count;
+                }
+#pragma omp parallel for num_threads(ranges) schedule(static, 1)
+            for (int r = 0; r < ranges; ++r) {
+                size_t *next = start.data() + size_t(r) * kBuckets;
+                for (size_t e = rangeBegin(r); e < rangeBegin(r + 1); ++e)
+                    scratch[next[(keyed[e].first >> shift) & (kBuckets - 1)]++] = keyed[e];
+            }
             keyed.swap(scratch);
         }
     }

@@ -53,6 +53,7 @@ struct BlendWeight
     float inverseMajor2 = 0;  ///< 1 / (sigma a)^2
     float minorExcess = 0;    ///< 1 / (sigma b)^2 - 1 / (sigma a)^2
 
+    BlendWeight() = default;
     explicit BlendWeight(const Surfel &s) : centre(s.position), normal(s.normal)
     {
         const float sigma2 = float(kBlendWidthFactor * kBlendWidthFactor);
@@ -103,9 +104,9 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
-    std::vector<detail::BlendWeight> weight;
-    weight.reserve(count);
-    for (const Surfel &s : surfels) weight.emplace_back(s);
+    std::vector<detail::BlendWeight> weight(count);
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < count; ++c) weight[c] = detail::BlendWeight(surfels[c]);
     std::vector<float> offset(count, 0.f);
 #pragma omp parallel
     {
