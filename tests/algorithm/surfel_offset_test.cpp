@@ -142,7 +142,7 @@ TEST(SurfelOffset, WeightsAreTheMetrics)
     const detail::BlendWeight weight(s);
     for (const P3 &x : {P3(0.1f, -0.2f, 0.3f), P3(0.15f, -0.1f, 0.32f), P3(0.05f, -0.22f, 0.25f), P3(0.3f, 0, 0.3f)}) {
         const double expected = surface[0].WeightExponent(vcg::Point3d::Construct(x));
-        EXPECT_NEAR(weight.Exponent(x), expected, 1e-4 * (1 + expected)) << x[0] << " " << x[1] << " " << x[2];
+        EXPECT_NEAR(weight.Exponent(s.position, x), expected, 1e-4 * (1 + expected)) << x[0] << " " << x[1] << " " << x[2];
     }
 }
 

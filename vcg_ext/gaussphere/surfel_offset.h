@@ -44,17 +44,18 @@ constexpr double kBlendWidthFactor = 1.5;
 
 namespace detail {
 
-/// A surfel's Gaussian weight in the blend, set up for repeated evaluation: vcg_ext/surfel_error's
-/// BlendingSurfel::WeightExponent, the major width across the tangent plane and along the
-/// normal, the minor width along the minor axis.
+/// The shape of a surfel's Gaussian weight in the blend, set up for repeated evaluation:
+/// vcg_ext/surfel_error's BlendingSurfel::WeightExponent, the major width across the tangent
+/// plane and along the normal, the minor width along the minor axis (20 bytes per surfel: at a
+/// million points the surfel stage is where the memory peaks).
 struct BlendWeight
 {
-    vcg::Point3f centre, normal, minorDirection;
+    vcg::Point3f minorDirection{0, 0, 0};
     float inverseMajor2 = 0;  ///< 1 / (sigma a)^2
     float minorExcess = 0;    ///< 1 / (sigma b)^2 - 1 / (sigma a)^2
 
     BlendWeight() = default;
-    explicit BlendWeight(const Surfel &s) : centre(s.position), normal(s.normal)
+    explicit BlendWeight(const Surfel &s)
     {
         const float sigma2 = float(kBlendWidthFactor * kBlendWidthFactor);
         const float scale2 = s.blendScale * s.blendScale; // the blend's widths only (surface_error_bound.h)
@@ -65,7 +66,8 @@ struct BlendWeight
         inverseMajor2 = 1.f / (sigma2 * major2);
         minorExcess = 1.f / (sigma2 * minor2) - inverseMajor2;
     }
-    float Exponent(const vcg::Point3f &x) const
+    /// The exponent at x of the surfel centred at `centre`.
+    float Exponent(const vcg::Point3f &centre, const vcg::Point3f &x) const
     {
         const vcg::Point3f d = x - centre;
         const float alongMinor = d.dot(minorDirection);
@@ -132,12 +134,12 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                     const int l = clusters.label[*q];
                     // Thin parts: surfels facing away belong to the other sheet.
                     if (l >= 0 && std::find(around, around + blended, l) == around + blended &&
-                        weight[l].normal.dot(normals[i]) > 0)
+                        surfels[l].normal.dot(normals[i]) > 0)
                         around[blended++] = l;
                 }
                 float smallest = 0; // exponent of the heaviest surfel: the weights are relative to it
                 for (int t = 0; t < blended; ++t) {
-                    exponent[t] = weight[around[t]].Exponent(p);
+                    exponent[t] = weight[around[t]].Exponent(surfels[around[t]].position, p);
                     smallest = t == 0 ? exponent[t] : std::min(smallest, exponent[t]);
                 }
                 float weightSum = 0;
@@ -145,8 +147,8 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                 for (int t = 0; t < blended; ++t) {
                     const float w = std::exp(smallest - exponent[t]);
                     weightSum += w;
-                    centre += weight[around[t]].centre * w;
-                    normal += weight[around[t]].normal * w;
+                    centre += surfels[around[t]].position * w;
+                    normal += surfels[around[t]].normal * w;
                 }
                 const float length = normal.Norm();
                 if (length > 0) sum += (p - centre / weightSum).dot(normal / length);
