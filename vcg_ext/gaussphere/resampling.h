@@ -465,7 +465,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
         result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
-        if (param.fitOffsets) recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels));
+        if (param.fitOffsets) {
+            detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
+            recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels));
+        }
     }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)
