@@ -107,13 +107,13 @@ for model in $models; do
   t1=$(date +%s.%N)
   sed -n 's/^.*\(Gaussian sphere resampling: [0-9]* points.*\)$/\1/p' "$work/${model}_resample.log" | tail -1
   # Same camera as the mesh (splat_render frames the file's bounding box) and the mesh's grey.
-  "$py" "$tool" frame "$work/$model.surfel" "$mesh" "$work/${model}_framed.surfel"
+  "$py" "$tool" frame "$work/$model.surfel" "$mesh" "$work/${model}_framed.surfel" "$work/${model}_framed_mesh.ply"
   count="$(sed -n 's/^element vertex \([0-9]*\).*/\1/p' <(head -c 2000 "$work/$model.surfel" | tr -d '\r'))"
   inputs="$(sed -n 's/^element vertex \([0-9]*\).*/\1/p' <(head -c 2000 "$points" | tr -d '\r'))"
   echo "| $model | $inputs | $count | $(awk -v a="$t0" -v b="$t1" "BEGIN { printf \"%.1f\", b - a }") |" >> "$work/models.md"
   for view in $views; do
     echo "   view $view"
-    render_one "$model" "$view" mesh "" "$mesh"
+    render_one "$model" "$view" mesh "" "$work/${model}_framed_mesh.ply"
     render_one "$model" "$view" threepass "" "$work/${model}_framed.surfel"
     render_one "$model" "$view" onepass "" "$work/${model}_framed.surfel"
     render_one "$model" "$view" points "" "$work/${model}_framed.surfel"

@@ -48,10 +48,10 @@ for spec in "dragon 20 20 1.25" "bunny -30 15 1.25"; do
   if [ ! -f "$points" ] || [ ! -f "$mesh" ]; then echo "skipping $model: input or mesh not found in $data"; continue; fi
   "$server" -i "$points" -s "$mlx_dir/resample_level8.mlx" -o "$work/$model.surfel" > "$work/$model.log" 2>&1 ||
     { echo "meshlabserver failed on $model, see $work/$model.log" >&2; exit 1; }
-  "$py" "$tool" frame "$work/$model.surfel" "$mesh" "$work/${model}_framed.surfel" > /dev/null
+  "$py" "$tool" frame "$work/$model.surfel" "$mesh" "$work/${model}_framed.surfel" "$work/${model}_framed_mesh.ply" > /dev/null
   surfels="$(sed -n 's/^element vertex \([0-9]*\).*/\1/p' <(head -c 2000 "$work/$model.surfel"))"
   inputs="$(sed -n 's/^element vertex \([0-9]*\).*/\1/p' <(head -c 2000 "$points"))"
-  shot "$model" mesh "$mesh" mesh "$az" "$el" "$zoom"
+  shot "$model" mesh "$work/${model}_framed_mesh.ply" mesh "$az" "$el" "$zoom"
   shot "$model" points "$work/${model}_framed.surfel" points "$az" "$el" "$zoom"
   shot "$model" threepass "$work/${model}_framed.surfel" threepass "$az" "$el" "$zoom"
   "$py" "$tool" montage "$images/${model}_mesh_points_splats.png" \
@@ -60,7 +60,7 @@ for spec in "dragon 20 20 1.25" "bunny -30 15 1.25"; do
     "three-pass ellipse splats=$work/${model}_threepass.png"
   if [ "$model" = dragon ]; then
     for mode in mesh points onepass threepass; do
-      file="$work/${model}_framed.surfel"; [ "$mode" = mesh ] && file="$mesh"
+      file="$work/${model}_framed.surfel"; [ "$mode" = mesh ] && file="$work/${model}_framed_mesh.ply"
       px=480 shot "$model" "close_$mode" "$file" "$mode" "$az" "$el" 3
     done
     "$py" "$tool" montage "$images/dragon_closeup.png" --panel=480 "mesh=$work/dragon_close_mesh.png" \

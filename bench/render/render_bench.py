@@ -4,7 +4,7 @@ mesh's camera, compute the image metrics, write results.md/.csv, and make the RE
 
 Needs numpy and matplotlib only (PNG through matplotlib.image; PLY through plyio.py).
 
-  render_bench.py frame SURFEL MESH OUT.surfel
+  render_bench.py frame SURFEL MESH OUT.surfel OUT_mesh.ply
   render_bench.py colorize MESH COLOURED_POINTS.ply OUT_mesh.ply
   render_bench.py metrics WORKDIR OUT.csv OUT.md      (reads WORKDIR/runs.tsv)
   render_bench.py montage OUT.png TITLE1=IMG1 TITLE2=IMG2 ... [--crop] [--panel=PX]
@@ -28,43 +28,68 @@ GREY = 192  # tools/splat_render's default albedo, which the mesh (no colours) g
 
 
 # ---------------------------------------------------------------------------------------------
-# frame: make the surfel file frame exactly like the mesh.
+# frame: make the surfel file and the mesh frame exactly alike.
 #
 # splat_render centres the camera on the bounding box of the file's vertices and fits its
-# bounding sphere. Surfel centres are cluster centroids, so their box is slightly smaller than the
-# mesh's and the two images would not share a camera. We append, for every box face the surfels
-# do not reach, the mesh vertex that attains it, with a zero normal and zero axes: the splat
-# modes skip such records (no orientation, no area), so they only extend the box. Points mode
-# draws them as up to 6 points, each on a true surface vertex. Colours are set to the mesh's
-# grey so that the material is the same.
-def frame(surfel_path, mesh_path, out_path):
+# bounding sphere. Surfel centres lie near cluster centroids, so their box is mostly slightly
+# smaller than the mesh's (and, fitted to their blend, may reach slightly beyond it on convex
+# parts): the two images would not share a camera. We append, for every box face the surfels do
+# not reach, the mesh vertex that attains it, with a zero normal and zero axes: the splat modes
+# skip such records (no orientation, no area), so they only extend the box. Points mode draws
+# them as up to 6 points, each on a true surface vertex. Likewise the mesh gets, after its own
+# vertices, the surfel centres that reach beyond its box: no face uses them, so mesh mode does
+# not draw them. Colours are set to the mesh's grey so that the material is the same.
+def frame(surfel_path, mesh_path, out_path, out_mesh_path):
+    """Gives the surfels and the mesh one bounding box (splat_render frames a file's box): each
+    gets framing vertices (zero normal, zero axes, never drawn) at the other's extremes beyond
+    its own. Surfels fitted to their blend may lie slightly outside the mesh on convex parts."""
     s, header = plyio.read_vertices(surfel_path)
-    m, _ = plyio.read_vertices(mesh_path)
+    m, mheader = plyio.read_vertices(mesh_path)
     sp = np.stack([s['x'], s['y'], s['z']], 1)
     mp = np.stack([m['x'], m['y'], m['z']], 1)
-    extra = []
-    for axis in range(3):
-        lo, hi = int(np.argmin(mp[:, axis])), int(np.argmax(mp[:, axis]))
-        if mp[lo, axis] < sp[:, axis].min():
-            extra.append(lo)
-        if mp[hi, axis] > sp[:, axis].max():
-            extra.append(hi)
-    extra = sorted(set(extra))
-    d = np.zeros(len(extra), dtype=s.dtype)
-    for c, name in enumerate('xyz'):
-        d[name] = mp[extra, c]
-    if 'blend_scale' in (s.dtype.names or ()):
-        d['blend_scale'] = 1  # the neutral value (.surfel version 2)
-    out = np.concatenate([s, d])
+
+    def extremes_beyond(points, other):
+        extra = []
+        for axis in range(3):
+            lo, hi = int(np.argmin(points[:, axis])), int(np.argmax(points[:, axis]))
+            if points[lo, axis] < other[:, axis].min():
+                extra.append(lo)
+            if points[hi, axis] > other[:, axis].max():
+                extra.append(hi)
+        return sorted(set(extra))
+
+    def padded(vertices, positions, extra):
+        d = np.zeros(len(extra), dtype=vertices.dtype)
+        for c, name in enumerate('xyz'):
+            d[name] = positions[extra, c]
+        if 'blend_scale' in (vertices.dtype.names or ()):
+            d['blend_scale'] = 1  # the neutral value (.surfel version 2)
+        return np.concatenate([vertices, d])
+
+    from_mesh, from_surfels = extremes_beyond(mp, sp), extremes_beyond(sp, mp)
+    out = padded(s, mp, from_mesh)
     for channel in ('red', 'green', 'blue'):
         if channel in out.dtype.names:
             out[channel] = GREY
     if 'alpha' in out.dtype.names:
         out['alpha'] = 255
     plyio.write_vertices(out_path, out, header)
+    # The mesh keeps its faces: the framing vertices go after its own, which the faces index.
+    mesh_out = padded(m, sp, from_surfels)
+    _, offset = plyio.read_header(mesh_path)
+    with open(mesh_path, 'rb') as f:
+        f.seek(offset + len(m) * m.dtype.itemsize)
+        faces = f.read()
+    with open(out_mesh_path, 'wb') as f:
+        lines = ['element vertex %d' % len(mesh_out) if l.startswith('element vertex') else l for l in mheader]
+        f.write(('\n'.join(lines) + '\n').encode('ascii'))
+        mesh_out.tofile(f)
+        f.write(faces)
     op = np.stack([out['x'], out['y'], out['z']], 1)
-    assert np.array_equal(op.min(0), mp.min(0)) and np.array_equal(op.max(0), mp.max(0)), 'box not matched'
-    print('%s: %d surfels + %d framing vertices (zero normal, zero axes)' % (out_path, len(s), len(extra)))
+    mo = np.stack([mesh_out['x'], mesh_out['y'], mesh_out['z']], 1)
+    assert np.array_equal(op.min(0), mo.min(0)) and np.array_equal(op.max(0), mo.max(0)), 'box not matched'
+    print('%s: %d surfels + %d framing vertices; %s: %d mesh vertices + %d framing vertices'
+          % (out_path, len(s), len(from_mesh), out_mesh_path, len(m), len(from_surfels)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -314,7 +339,7 @@ def montage(out_path, panels, crop=False, panel_px=640):
 
 
 def main(argv):
-    if len(argv) >= 2 and argv[1] == 'frame' and len(argv) == 5:
+    if len(argv) >= 2 and argv[1] == 'frame' and len(argv) == 6:
         frame(*argv[2:])
     elif len(argv) >= 2 and argv[1] == 'colorize' and len(argv) == 5:
         colorize(*argv[2:])
