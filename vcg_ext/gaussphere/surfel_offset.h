@@ -1,11 +1,13 @@
 // Beyond the paper: surfel offsets fitted to the blended surface.
 //
 // A surfel stands at its cluster's centroid, lifted onto the surface above it (surfel
-// generation). What a user sees, though, and what bench/ measures, is the blend of all surfels
-// (an MLS projection as in vcg_ext/surfel_error, or a splat rendering): between two surfels on a
-// curved surface the blend follows neither's plane, and the surface it draws lies off the
-// samples by a fraction of the curvature times the spacing squared, inside or outside depending
-// on the sizes and weights around. FitSurfelOffsets measures that directly: each member of a
+// generation). The surface a point-set surface tool computes from surfels, though, and what
+// bench/ measures, is the blend of their positions (an MLS projection, vcg_ext/surfel_error):
+// between two surfels on a curved surface the blend follows neither's plane, and the surface it
+// draws lies off the samples by a fraction of the curvature times the spacing squared, inside or
+// outside depending on the sizes and weights around. (A splat renderer draws each surfel where it
+// stands instead: fitted surfels swell its silhouettes a little, about 1 dB of PSNR against the
+// original mesh in bench/render; hence ResamplingParams::fitOffsets.) FitSurfelOffsets measures that directly: each member of a
 // cluster is compared with the blended plane at it, and the surfel moves along its normal by the
 // mean signed distance, the least-squares offset of that surfel for the blend it takes part in.
 //
