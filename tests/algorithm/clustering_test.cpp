@@ -16,7 +16,7 @@ using vcg::gaussphere::Clustering;
 
 TEST(ClusterMembers, GroupsEveryPointInIncreasingOrderForAnyThreadCount)
 {
-    for (int n : {1000, 3 * vcg::gaussphere::kMembersParallelMin + 7}) { // the serial and the parallel sort
+    for (int n : {1000, 3 * int(vcg::gaussphere::kCountingSortParallelMin) + 7}) { // the serial and the parallel sort
         SCOPED_TRACE(n);
         Clustering c;
         c.clusterCount = 5000;

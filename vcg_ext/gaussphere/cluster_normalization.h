@@ -49,9 +49,7 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < count; ++c) {
         const int size = members.Size(c);
-        bool atCrease = false;
-        if (param.creasePoints)
-            for (const int *i = members.begin(c); i != members.end(c) && !atCrease; ++i) atCrease = (*param.creasePoints)[*i];
+        const bool atCrease = param.creasePoints && members.AnyFlagged(c, *param.creasePoints);
         // At a crease the limits only tighten: the smaller cap, the smaller never-split size.
         int maxSize = param.maxClusterSize, minSplit = param.minSplitSize;
         if (atCrease) {

@@ -4,11 +4,9 @@
 #define VCG_EXT_GAUSSPHERE_CLUSTERING_H
 
 #include <algorithm>
-#include <cstdint>
 #include <vector>
 
-#include <omp.h>
-
+#include "counting_sort.h"
 #include "flat_vector.h"
 
 namespace vcg {
@@ -40,55 +38,31 @@ struct Clustering
     }
 };
 
-/// Below this many points ClusterMembers sorts on the calling thread alone.
-constexpr int kMembersParallelMin = 1 << 16;
-
 /// Members of every cluster, grouped: cluster c owns index[offset[c], offset[c+1]),
-/// in increasing point order (a counting sort, so deterministic). Built by every stage that
-/// walks clusters, so in parallel: each thread counts and places the members of its own
-/// range of points, after those of the ranges before it.
+/// in increasing point order (a counting sort, so deterministic; built by every stage that
+/// walks clusters, so in parallel: counting_sort.h).
 struct ClusterMembers
 {
     IndexArray offset;
     IndexArray index;
 
     explicit ClusterMembers(const Clustering &c)
-        : offset(c.clusterCount + 1)
+        : offset(c.clusterCount + 1), index(c.label.size())
     {
-        const int n = int(c.label.size()), count = c.clusterCount;
-        const int ranges = n < kMembersParallelMin ? 1 : std::max(1, omp_get_max_threads());
-        // cursor[r * count + k]: members of cluster k in point range r, then where they go.
-        IndexArray cursor(size_t(ranges) * count);
-        const auto rangeBegin = [n, ranges](int r) { return int(std::int64_t(n) * r / ranges); };
-#pragma omp parallel for num_threads(ranges) schedule(static, 1)
-        for (int r = 0; r < ranges; ++r) {
-            int *counted = cursor.data() + size_t(r) * count;
-            std::fill(counted, counted + count, 0);
-            for (int i = rangeBegin(r); i < rangeBegin(r + 1); ++i)
-                if (c.label[i] >= 0) ++counted[c.label[i]];
-        }
-        int placed = 0;
-        for (int k = 0; k < count; ++k) {
-            offset[k] = placed;
-            for (int r = 0; r < ranges; ++r) {
-                const int members = cursor[size_t(r) * count + k];
-                cursor[size_t(r) * count + k] = placed;
-                placed += members;
-            }
-        }
-        offset[count] = placed;
+        const int placed = StableCountingSort(
+            int(c.label.size()), size_t(c.clusterCount), [&c](int i) { return c.label[i]; },
+            [this](int i, int slot) { index[slot] = i; }, offset.data());
         index.resize(placed);
-#pragma omp parallel for num_threads(ranges) schedule(static, 1)
-        for (int r = 0; r < ranges; ++r) {
-            int *next = cursor.data() + size_t(r) * count;
-            for (int i = rangeBegin(r); i < rangeBegin(r + 1); ++i)
-                if (c.label[i] >= 0) index[next[c.label[i]]++] = i;
-        }
     }
 
     int Size(int c) const { return offset[c + 1] - offset[c]; }
     const int *begin(int c) const { return index.data() + offset[c]; }
     const int *end(int c) const { return index.data() + offset[c + 1]; }
+    /// Whether a member of cluster c is flagged in `flags` (one flag per point).
+    bool AnyFlagged(int c, const FlatVector<char> &flags) const
+    {
+        return std::any_of(begin(c), end(c), [&flags](int i) { return flags[i] != 0; });
+    }
 };
 
 } // namespace gaussphere

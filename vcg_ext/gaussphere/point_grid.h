@@ -42,6 +42,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
+#include "counting_sort.h"
 #include "flat_vector.h"
 #include "point_kdtree.h"
 
@@ -314,36 +315,15 @@ private:
         constexpr int kDigitBits = 11;
         constexpr size_t kBuckets = size_t(1) << kDigitBits;
         const size_t n = keyed.size();
-        // Each thread counts and moves one range of the entries, after those of the ranges
-        // before it in every bucket: stable, and the same order for any thread count.
-        const int ranges = n < (size_t(1) << 16) ? 1 : std::max(1, omp_get_max_threads());
-        const auto rangeBegin = [n, ranges](int r) { return n * size_t(r) / size_t(ranges); };
         std::uint64_t used = 0;
-#pragma omp parallel for num_threads(ranges) schedule(static) reduction(| : used)
+#pragma omp parallel for schedule(static) reduction(| : used)
         for (size_t e = 0; e < n; ++e) used |= keyed[e].first;
         FlatVector<std::pair<std::uint64_t, int>> scratch(n);
-        std::vector<size_t> start(kBuckets * size_t(ranges)); // [range][bucket]
         for (int shift = 0; shift < 64 && (used >> shift) != 0; shift += kDigitBits) {
-#pragma omp parallel for num_threads(ranges) schedule(static, 1)
-            for (int r = 0; r < ranges; ++r) {
-                size_t *counted = start.data() + size_t(r) * kBuckets;
-                std::fill(counted, counted + kBuckets, 0);
-                for (size_t e = rangeBegin(r); e < rangeBegin(r + 1); ++e) ++counted[(keyed[e].first >> shift) & (kBuckets - 1)];
-            }
-            size_t offset = 0;
-            for (size_t b = 0; b < kBuckets; ++b)
-                for (int r = 0; r < ranges; ++r) {
-                    size_t &slot = start[size_t(r) * kBuckets + b];
-                    const size_t count = slot;
-                    slot = offset;
-                    offset += count;
-                }
-#pragma omp parallel for num_threads(ranges) schedule(static, 1)
-            for (int r = 0; r < ranges; ++r) {
-                size_t *next = start.data() + size_t(r) * kBuckets;
-                for (size_t e = rangeBegin(r); e < rangeBegin(r + 1); ++e)
-                    scratch[next[(keyed[e].first >> shift) & (kBuckets - 1)]++] = keyed[e];
-            }
+            // A stable pass per digit, in parallel with the sequential order (counting_sort.h).
+            StableCountingSort(
+                n, kBuckets, [&](size_t e) { return int((keyed[e].first >> shift) & (kBuckets - 1)); },
+                [&](size_t e, size_t slot) { scratch[slot] = keyed[e]; });
             keyed.swap(scratch);
         }
     }

@@ -118,11 +118,9 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
         float exponent[kOffsetNeighbors + 1];
 #pragma omp for schedule(dynamic, 256)
         for (int c = 0; c < count; ++c) {
-            // A narrowed blend already follows its surfel closely (the error bound's doing).
-            bool stays = surfels[c].blendScale < 1;
-            if (creasePoints)
-                for (const int *i = members.begin(c); i != members.end(c) && !stays; ++i) stays = (*creasePoints)[*i];
-            if (stays) continue;
+            // Crease clusters stay (file header), and so do narrowed blends, which already follow
+            // their surfels closely (the error bound's doing).
+            if (surfels[c].blendScale < 1 || (creasePoints && members.AnyFlagged(c, *creasePoints))) continue;
             double sum = 0;
             const int size = members.Size(c), stride = std::max(1, (size + kOffsetSamples - 1) / kOffsetSamples);
             int sampled = 0;
