@@ -286,6 +286,29 @@ TEST(ResamplingPipeline, WriteSurfelsStoresAxesAndRadius)
     EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute)) << "every blend scale is 1";
 }
 
+// Surfels fitted to their blend carry their move as SurfelFitOffset, for every surfel.
+TEST(ResamplingPipeline, WriteSurfelsStoresFitOffsetsWhenFitted)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(4000);
+    const ResamplingResult r = gstest::Resample(s);
+    ASSERT_GT(r.stats.surfelsFitted, 0);
+    OrientedPointMesh out;
+    WriteSurfels(r.surfels, out);
+    ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kFitOffsetAttribute));
+    auto fit = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<float>(out, kFitOffsetAttribute);
+    int moved = 0;
+    for (size_t i = 0; i < r.surfels.size(); ++i) {
+        EXPECT_EQ(fit[i], r.surfels[i].fitOffset) << i;
+        moved += fit[i] != 0;
+    }
+    EXPECT_EQ(moved, r.stats.surfelsFitted);
+    // Written again without the fit into the same mesh: no stale attribute.
+    ResamplingParams p;
+    p.fitOffsets = false;
+    WriteSurfels(gstest::Resample(s, p).surfels, out);
+    EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kFitOffsetAttribute));
+}
+
 // A narrowed blend (the error bound's) is stored as SurfelBlendScale, for every surfel.
 TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
 {

@@ -79,14 +79,17 @@ TEST(SurfelOffset, OnACurvedSurfaceTheFitMovesAlongNormalsAndConverges)
     const double first = LargestMove(once, f.surfels);
     EXPECT_NEAR(fit.largest, first, 1e-6);
     EXPECT_GT(first, 1e-4) << "the blend of surfels on a sphere is off the samples";
-    for (size_t c = 0; c < once.size(); ++c) { // along the normal only
+    for (size_t c = 0; c < once.size(); ++c) { // along the normal only, by the recorded offset
         const vcg::Point3f move = once[c].position - f.surfels[c].position;
         EXPECT_LT((move - f.surfels[c].normal * move.dot(f.surfels[c].normal)).Norm(), 1e-6f) << "surfel " << c;
+        EXPECT_NEAR(once[c].fitOffset, move.dot(f.surfels[c].normal), 1e-6f) << "surfel " << c;
     }
     // A second fit from the fitted surfels has less left to correct: the first went the right way.
     std::vector<Surfel> twice = once;
     f.Fit(twice);
     EXPECT_LT(LargestMove(twice, once), 0.5 * first);
+    for (size_t c = 0; c < twice.size(); ++c) // the offsets add up: back to the unfitted position
+        EXPECT_LT((twice[c].position - twice[c].normal * twice[c].fitOffset - f.surfels[c].position).Norm(), 1e-6f) << c;
 }
 
 TEST(SurfelOffset, MovesKeepEveryMemberWithinAPlaneDistance)

@@ -50,6 +50,9 @@ struct Surfel
     /// Factor in (0, 1] on the axes for blending only (the error bound narrows one-point surfels
     /// at creases, surface_error_bound.h); the axes themselves keep covering the surface.
     float blendScale = 1.f;
+    /// How far FitSurfelOffsets moved `position` along `normal` (surfel_offset.h): position -
+    /// fitOffset * normal is where the surfel stood on the sampled surface. 0: not moved.
+    float fitOffset = 0.f;
 };
 
 struct SurfelGenerationParams

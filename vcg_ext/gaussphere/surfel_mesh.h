@@ -1,7 +1,7 @@
 // Writes surfels into a vcg mesh: positions, normals, radius (when the mesh has the
 // radius component enabled), quality = member count (when present), the per-vertex
-// attributes EllipseMajorAxis / EllipseMinorAxis, and SurfelBlendScale when some surfel's blend
-// scale is not 1 (docs/surfel_format.md).
+// attributes EllipseMajorAxis / EllipseMinorAxis, SurfelBlendScale when some surfel's blend
+// scale is not 1, and SurfelFitOffset when some surfel was fitted to the blend (docs/surfel_format.md).
 #ifndef VCG_EXT_GAUSSPHERE_SURFEL_MESH_H
 #define VCG_EXT_GAUSSPHERE_SURFEL_MESH_H
 
@@ -19,6 +19,22 @@ constexpr const char *kMajorAxisAttribute = "EllipseMajorAxis";
 constexpr const char *kMinorAxisAttribute = "EllipseMinorAxis";
 constexpr const char *kRepresentativeAttribute = "SurfelIndex";
 constexpr const char *kBlendScaleAttribute = "SurfelBlendScale";
+constexpr const char *kFitOffsetAttribute = "SurfelFitOffset";
+
+namespace detail {
+
+/// A per-vertex float attribute of `mesh` named `name` when `wanted`; when not, none (an old
+/// one is deleted: Clear() keeps attributes).
+template <class MeshType>
+typename MeshType::template PerVertexAttributeHandle<float> OptionalFloatAttribute(MeshType &mesh, const char *name,
+                                                                                   bool wanted)
+{
+    if (wanted) return vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, name);
+    if (vcg::tri::HasPerVertexAttribute(mesh, name)) vcg::tri::Allocator<MeshType>::DeletePerVertexAttribute(mesh, name);
+    return typename MeshType::template PerVertexAttributeHandle<float>();
+}
+
+} // namespace detail
 
 /// Replaces the content of `mesh` with one vertex per surfel.
 template <class MeshType>
@@ -32,11 +48,9 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
     auto minor = vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<Coord>(mesh, kMinorAxisAttribute);
     const bool narrowed =
         std::any_of(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.blendScale != 1.f; });
-    typename MeshType::template PerVertexAttributeHandle<float> blend;
-    if (narrowed)
-        blend = vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, kBlendScaleAttribute);
-    else if (vcg::tri::HasPerVertexAttribute(mesh, kBlendScaleAttribute)) // Clear() keeps attributes
-        vcg::tri::Allocator<MeshType>::DeletePerVertexAttribute(mesh, kBlendScaleAttribute);
+    const bool fitted = std::any_of(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.fitOffset != 0.f; });
+    auto blend = detail::OptionalFloatAttribute(mesh, kBlendScaleAttribute, narrowed);
+    auto fit = detail::OptionalFloatAttribute(mesh, kFitOffsetAttribute, fitted);
     for (const Surfel &s : surfels) {
         vi->P() = Coord::Construct(s.position);
         vi->N() = Coord::Construct(s.normal);
@@ -45,6 +59,7 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
         major[vi] = Coord::Construct(s.majorAxis);
         minor[vi] = Coord::Construct(s.minorAxis);
         if (narrowed) blend[vi] = s.blendScale;
+        if (fitted) fit[vi] = s.fitOffset;
         ++vi;
     }
     vcg::tri::UpdateBounding<MeshType>::Box(mesh);

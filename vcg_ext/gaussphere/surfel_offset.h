@@ -100,7 +100,8 @@ struct SurfelOffsetResult
 /// and where none can, the surfel stays.
 /// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); `graph` is the
 ///      neighbour graph of `points` (unit `normals`); creasePoints, if given, has one flag per point.
-/// \post Only positions change; the result does not depend on the thread count.
+/// \post Only positions change, each surfel's fitOffset by the same move; the result does not
+///       depend on the thread count.
 inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals,
                                            const NeighborGraph &graph, const Clustering &clusters,
                                            const FlatVector<char> *creasePoints, std::vector<Surfel> &surfels,
@@ -177,6 +178,7 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
     for (int c = 0; c < count; ++c) {
         if (offset[c] == 0) continue;
         surfels[c].position += surfels[c].normal * offset[c];
+        surfels[c].fitOffset += offset[c];
         ++result.moved;
         result.largest = std::max(result.largest, double(std::abs(offset[c])));
     }
