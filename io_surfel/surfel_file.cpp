@@ -16,22 +16,38 @@ namespace {
 static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4,
               "the file stores IEEE 754 single precision floats");
 
-// Version 2 appends blend_scale to version 1's float properties.
-constexpr std::size_t kFloatPropertyCount = 15;
-constexpr std::size_t kFloatPropertyCountVersion1 = 14;
+// Each version appends one float property to the previous one's: version 2 blend_scale,
+// version 3 fit_offset.
+constexpr std::size_t kFloatPropertyCount = 16;
 constexpr std::size_t kColorPropertyCount = 4;
 constexpr const char* kFloatPropertyNames[kFloatPropertyCount] = {
-    "x", "y", "z", "nx", "ny", "nz", "radius",
-    "major_x", "major_y", "major_z", "minor_x", "minor_y", "minor_z", "quality", "blend_scale"};
+    "x", "y", "z", "nx", "ny", "nz", "radius", "major_x", "major_y", "major_z",
+    "minor_x", "minor_y", "minor_z", "quality", "blend_scale", "fit_offset"};
 constexpr const char* kColorPropertyNames[kColorPropertyCount] = {"red", "green", "blue", "alpha"};
 
 std::size_t recordBytes(std::size_t floatCount) { return floatCount * 4 + kColorPropertyCount; }
+
+struct Version {
+  const char* magic;
+  std::size_t floatCount;
+};
+constexpr Version kVersions[] = {{kSurfelFileMagic, kFloatPropertyCount},
+                                 {kSurfelFileMagicVersion2, kFloatPropertyCount - 1},
+                                 {kSurfelFileMagicVersion1, kFloatPropertyCount - 2}};
+
+// The version whose `comment` text is `text`, or null.
+const Version* findVersion(const std::string& text) {
+  for (const Version& version : kVersions)
+    if (text == version.magic) return &version;
+  return nullptr;
+}
 
 // Where the float properties of a record live in a SurfelRecord, in kFloatPropertyNames' order.
 std::array<float*, kFloatPropertyCount> floatFields(SurfelRecord& s) {
   return {{&s.position[0], &s.position[1], &s.position[2], &s.normal[0], &s.normal[1],
            &s.normal[2], &s.radius, &s.majorAxis[0], &s.majorAxis[1], &s.majorAxis[2],
-           &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality, &s.blendScale}};
+           &s.minorAxis[0], &s.minorAxis[1], &s.minorAxis[2], &s.quality, &s.blendScale,
+           &s.fitOffset}};
 }
 
 // Explicit byte order, so the file is little-endian whatever the host is.
@@ -57,7 +73,8 @@ void encode(SurfelRecord surfel, unsigned char* out) {
   std::copy(surfel.color.begin(), surfel.color.end(), out);
 }
 
-// A record of `floatCount` float properties (version 1 lacks the last one: it stays 1).
+// A record of `floatCount` float properties (older versions lack the last ones: they keep
+// their defaults).
 SurfelRecord decode(const unsigned char* in, std::size_t floatCount) {
   SurfelRecord surfel;
   const std::array<float*, kFloatPropertyCount> fields = floatFields(surfel);
@@ -140,16 +157,15 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount,
     if (keyword == "obj_info") continue;
     if (keyword == "comment") {
       const std::string text = afterKeyword(line);
-      if (text == kSurfelFileMagic || text == kSurfelFileMagicVersion1) {
-        const std::size_t versionFloats =
-            text == kSurfelFileMagic ? kFloatPropertyCount : kFloatPropertyCountVersion1;
-        if (hasMagic && versionFloats != floatCount)
+      if (const Version* version = findVersion(text)) {
+        if (hasMagic && version->floatCount != floatCount)
           return fail(error, "two different .surfel versions in the PLY header");
         hasMagic = true;
-        floatCount = versionFloats;
+        floatCount = version->floatCount;
       } else if (text.compare(0, 18, "gaussphere-surfel ") == 0) {
         return fail(error, "unsupported .surfel version '" + text + "' (this reader reads '" +
-                               kSurfelFileMagic + "' and '" + kSurfelFileMagicVersion1 + "')");
+                               kSurfelFileMagic + "', '" + kSurfelFileMagicVersion2 + "' and '" +
+                               kSurfelFileMagicVersion1 + "')");
       }
     } else if (keyword == "format") {
       if (words.size() != 3 || words[1] != "binary_little_endian" || words[2] != "1.0")
@@ -208,7 +224,7 @@ bool remainingBytes(std::istream& in, std::uint64_t& bytes) {
 bool operator==(const SurfelRecord& a, const SurfelRecord& b) {
   return a.position == b.position && a.normal == b.normal && a.radius == b.radius &&
          a.majorAxis == b.majorAxis && a.minorAxis == b.minorAxis && a.quality == b.quality &&
-         a.blendScale == b.blendScale && a.color == b.color;
+         a.blendScale == b.blendScale && a.fitOffset == b.fitOffset && a.color == b.color;
 }
 
 bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error) {
@@ -284,6 +300,10 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
 
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {
   return std::any_of(surfels.begin(), surfels.end(), [](const SurfelRecord& s) { return s.blendScale != 1; });
+}
+
+bool hasFitOffsets(const std::vector<SurfelRecord>& surfels) {
+  return std::any_of(surfels.begin(), surfels.end(), [](const SurfelRecord& s) { return s.fitOffset != 0; });
 }
 
 bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels) {

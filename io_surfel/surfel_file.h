@@ -1,8 +1,10 @@
 // Reader and writer of `.surfel` files (docs/surfel_format.md): a binary little-endian
 // PLY file with one `vertex` element whose properties are, in this order,
 //   float x y z nx ny nz radius major_x major_y major_z minor_x minor_y minor_z quality blend_scale
+//   fit_offset
 //   uchar red green blue alpha
-// (version 2; version 1 files, without blend_scale, are read too).
+// (version 3; version 2 files, without fit_offset, and version 1 files, without blend_scale
+// either, are read too).
 // No Qt, no vcg: the MeshLab plugin, tests and tools share this code (surfel_records_mesh.h
 // converts to and from vcg meshes).
 #ifndef GAUSSPHERE_IO_SURFEL_SURFEL_FILE_H
@@ -28,6 +30,7 @@ struct SurfelRecord {
   Vec3f minorAxis{};
   float quality = 0;
   float blendScale = 1;  // factor on the axes in blending weights only (version 2; 1 in version 1)
+  float fitOffset = 0;   // move along the normal that fitted the surfel to its blend (version 3; 0 before)
   std::array<std::uint8_t, 4> color{};  // red, green, blue, alpha
 };
 
@@ -35,8 +38,9 @@ bool operator==(const SurfelRecord& a, const SurfelRecord& b);
 inline bool operator!=(const SurfelRecord& a, const SurfelRecord& b) { return !(a == b); }
 
 // The `comment` line that marks a PLY file as a `.surfel` file of the version written; the
-// reader also accepts kSurfelFileMagicVersion1.
-constexpr const char* kSurfelFileMagic = "gaussphere-surfel 2";
+// reader also accepts the older versions.
+constexpr const char* kSurfelFileMagic = "gaussphere-surfel 3";
+constexpr const char* kSurfelFileMagicVersion2 = "gaussphere-surfel 2";
 constexpr const char* kSurfelFileMagicVersion1 = "gaussphere-surfel 1";
 
 // Reading is strict: anything but the exact layout above (extra `comment` and `obj_info`
@@ -56,6 +60,10 @@ bool hasEllipseFrames(const std::vector<SurfelRecord>& surfels);
 // True when some surfel's blend scale differs from 1: only then does a loaded layer get the
 // blend scale attribute.
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels);
+
+// True when some surfel's fit offset is not 0: only then does a loaded layer get the fit
+// offset attribute.
+bool hasFitOffsets(const std::vector<SurfelRecord>& surfels);
 
 }  // namespace surfel_io
 

@@ -31,8 +31,8 @@ Point3 toPoint3(const Vec3f& v) {
 
 // One record per live (not deleted) vertex, in vertex order. What the mesh lacks is written
 // as zero: the radius without the radius component, an axis without its attribute (the
-// two attributes are looked up independently); a missing blend scale as 1; faces and edges
-// are not part of the format.
+// two attributes are looked up independently); a missing blend scale as 1, a missing fit
+// offset as 0; faces and edges are not part of the format.
 // Non-const: vcg looks attributes up through a mutable mesh.
 template <class MeshType>
 std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
@@ -43,7 +43,9 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
   auto major = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
   auto minor = Allocator::template FindPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   auto blend = Allocator::template FindPerVertexAttribute<float>(mesh, vcg::gaussphere::kBlendScaleAttribute);
+  auto fit = Allocator::template FindPerVertexAttribute<float>(mesh, vcg::gaussphere::kFitOffsetAttribute);
   const bool hasBlend = Allocator::IsValidHandle(mesh, blend);
+  const bool hasFit = Allocator::IsValidHandle(mesh, fit);
   const bool hasMajor = Allocator::IsValidHandle(mesh, major);
   const bool hasMinor = Allocator::IsValidHandle(mesh, minor);
   const bool hasNormal = vcg::tri::HasPerVertexNormal(mesh);
@@ -63,6 +65,7 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
     if (hasMinor) s.minorAxis = detail::toVec3f(minor[v]);
     if (hasQuality) s.quality = float(v->cQ());
     if (hasBlend) s.blendScale = blend[v];
+    if (hasFit) s.fitOffset = fit[v];
     if (hasColor)
       for (int c = 0; c < 4; ++c) s.color[c] = v->cC()[c];
     surfels.push_back(s);
@@ -75,7 +78,8 @@ std::vector<SurfelRecord> recordsFromMesh(MeshType& mesh) {
 // enabled first. Both ellipse attributes are added when some surfel has a non-zero axis
 // (hasEllipseFrames) and neither otherwise: a file written from a layer without ellipse
 // frames reads back without them, and none are synthesized from the radius. The blend scale
-// attribute likewise exists only when some surfel's differs from 1 (hasBlendScales).
+// attribute likewise exists only when some surfel's differs from 1 (hasBlendScales), the fit
+// offset attribute only when some surfel's is not 0 (hasFitOffsets).
 template <class MeshType>
 void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) {
   using Point3 = typename MeshType::CoordType;
@@ -95,10 +99,13 @@ void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) 
     major = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
     minor = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   }
-  typename MeshType::template PerVertexAttributeHandle<float> blend;
+  typename MeshType::template PerVertexAttributeHandle<float> blend, fit;
   const bool withBlend = hasBlendScales(surfels);
   if (withBlend)
     blend = Allocator::template GetPerVertexAttribute<float>(mesh, vcg::gaussphere::kBlendScaleAttribute);
+  const bool withFit = hasFitOffsets(surfels);
+  if (withFit)
+    fit = Allocator::template GetPerVertexAttribute<float>(mesh, vcg::gaussphere::kFitOffsetAttribute);
   for (const SurfelRecord& s : surfels) {
     v->P() = detail::toPoint3<Point3>(s.position);
     if (hasNormal) v->N() = detail::toPoint3<typename MeshType::VertexType::NormalType>(s.normal);
@@ -110,6 +117,7 @@ void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) 
       minor[v] = detail::toPoint3<Point3>(s.minorAxis);
     }
     if (withBlend) blend[v] = s.blendScale;
+    if (withFit) fit[v] = s.fitOffset;
     ++v;
   }
 }

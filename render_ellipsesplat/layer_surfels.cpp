@@ -1,6 +1,7 @@
 #include "layer_surfels.h"
 
 #include <common/meshmodel.h>
+#include <vcg_ext/gaussphere/surfel_mesh.h>
 
 #include <algorithm>
 #include <cstring>
@@ -8,10 +9,11 @@
 namespace splat {
 namespace {
 
-const char *const kMajorAxisAttribute = "EllipseMajorAxis";
-const char *const kMinorAxisAttribute = "EllipseMinorAxis";
+using vcg::gaussphere::kMajorAxisAttribute;
+using vcg::gaussphere::kMinorAxisAttribute;
 
 using AxisHandle = CMeshO::PerVertexAttributeHandle<Point3m>;
+using OffsetHandle = CMeshO::PerVertexAttributeHandle<float>;
 
 // Both ellipse attribute handles, valid only when the layer has both.
 bool findEllipseAttributes(const MeshModel &layer, AxisHandle &major, AxisHandle &minor)
@@ -21,6 +23,14 @@ bool findEllipseAttributes(const MeshModel &layer, AxisHandle &major, AxisHandle
     minor = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<Point3m>(mesh, kMinorAxisAttribute);
     return vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, major) &&
            vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, minor);
+}
+
+// The fit offset attribute handle, valid only when the layer has it.
+bool findFitOffsets(const MeshModel &layer, OffsetHandle &offsets)
+{
+    CMeshO &mesh = const_cast<CMeshO &>(layer.cm);
+    offsets = vcg::tri::Allocator<CMeshO>::FindPerVertexAttribute<float>(mesh, vcg::gaussphere::kFitOffsetAttribute);
+    return vcg::tri::Allocator<CMeshO>::IsValidHandle(mesh, offsets);
 }
 
 bool hasRadii(const MeshModel &layer)
@@ -73,6 +83,9 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
         surfels.colors.reserve(4 * count);
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
+    OffsetHandle offset;
+    const bool hasOffsets = findFitOffsets(layer, offset);
+    std::vector<float> fitOffsets; // per surfel when the layer has them
     std::vector<float> radii; // per surfel; 0 = not known, estimate from neighbours
     for (const CVertexO &v : layer.cm.vert) {
         if (v.IsD())
@@ -84,6 +97,8 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
         if (hasColors(layer))
             for (int c = 0; c < 4; ++c)
                 surfels.colors.push_back(v.cC()[c]);
+        if (hasOffsets)
+            fitOffsets.push_back(offset[v]);
         if (hasEllipses) {
             for (int c = 0; c < 3; ++c) {
                 surfels.majorAxes.push_back(major[v][c]);
@@ -93,6 +108,7 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
             radii.push_back(hasRadii(layer) && v.cR() > 0 ? v.cR() : 0.0f);
         }
     }
+    moveToSampledSurface(surfels, fitOffsets);
     if (hasEllipses)
         return surfels;
 
@@ -111,10 +127,12 @@ std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours)
     Fingerprint fingerprint;
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
+    OffsetHandle offset;
+    const bool hasOffsets = findFitOffsets(layer, offset);
     fingerprint.add(layer.cm.vn);
     fingerprint.add(neighbours);
     fingerprint.add(std::uint32_t(hasEllipses) | std::uint32_t(hasRadii(layer)) << 1 |
-                    std::uint32_t(hasColors(layer)) << 2);
+                    std::uint32_t(hasColors(layer)) << 2 | std::uint32_t(hasOffsets) << 3);
     for (const CVertexO &v : layer.cm.vert) {
         if (v.IsD())
             continue;
@@ -128,6 +146,8 @@ std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours)
             fingerprint.add(major[v]);
             fingerprint.add(minor[v]);
         }
+        if (hasOffsets)
+            fingerprint.add(offset[v]);
     }
     return fingerprint.value();
 }

@@ -16,11 +16,12 @@ bool layerHasNormals(const MeshModel &layer);
 
 // Surfels of every live vertex: ellipses from the EllipseMajorAxis/EllipseMinorAxis
 // attributes when the layer has both, otherwise circles whose radius is R() when the radius
-// component is enabled and positive, else the distance to the k-th nearest neighbour.
+// component is enabled and positive, else the distance to the k-th nearest neighbour. With the
+// SurfelFitOffset attribute they stand at their unfitted positions (moveToSampledSurface).
 SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours);
 
 // Changes whenever anything surfelsOfLayer reads changes (positions, normals, colours,
-// radii, ellipse attributes, which of them exist, and the neighbour count).
+// radii, ellipse attributes, fit offsets, which of them exist, and the neighbour count).
 std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours);
 
 } // namespace splat

@@ -2,6 +2,7 @@
 
 #include <vcg/space/index/kdtree/kdtree.h>
 
+#include <cassert>
 #include <cmath>
 
 namespace splat {
@@ -51,6 +52,16 @@ void assignCircularFrames(SurfelArrays &surfels, const std::vector<float> &radii
             surfels.minorAxes[3 * i + c] = f[c];
         }
     }
+}
+
+void moveToSampledSurface(SurfelArrays &surfels, const std::vector<float> &fitOffsets)
+{
+    assert(fitOffsets.empty() || fitOffsets.size() == surfels.size());
+    if (fitOffsets.size() != surfels.size() || surfels.normals.size() != surfels.positions.size())
+        return;
+    for (std::size_t i = 0; i < fitOffsets.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            surfels.positions[3 * i + c] -= fitOffsets[i] * surfels.normals[3 * i + c];
 }
 
 } // namespace splat

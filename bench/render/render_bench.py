@@ -30,23 +30,33 @@ GREY = 192  # tools/splat_render's default albedo, which the mesh (no colours) g
 # ---------------------------------------------------------------------------------------------
 # frame: make the surfel file and the mesh frame exactly alike.
 #
-# splat_render centres the camera on the bounding box of the file's vertices and fits its
-# bounding sphere. Surfel centres lie near cluster centroids, so their box is mostly slightly
-# smaller than the mesh's (and, fitted to their blend, may reach slightly beyond it on convex
-# parts): the two images would not share a camera. We append, for every box face the surfels do
+# splat_render centres the camera on the bounding box of the file's vertices (surfels with a
+# fit_offset where it draws them, unfitted: drawn_positions) and fits its bounding sphere.
+# Surfel centres lie near cluster centroids, so their box is mostly slightly smaller than the
+# mesh's (and may reach slightly beyond it on convex parts): the two images would not share a
+# camera. We append, for every box face the surfels do
 # not reach, the mesh vertex that attains it, with a zero normal and zero axes: the splat modes
 # skip such records (no orientation, no area), so they only extend the box. Points mode draws
 # them as up to 6 points, each on a true surface vertex. Likewise the mesh gets, after its own
 # vertices, the surfel centres that reach beyond its box: no face uses them, so mesh mode does
 # not draw them. Colours are set to the mesh's grey so that the material is the same.
+def drawn_positions(vertices):
+    """Where splat_render draws the vertices: those with a fit_offset moved back along their
+    normals to their unfitted positions (moveToSampledSurface), in float32 as it does."""
+    p = np.stack([vertices['x'], vertices['y'], vertices['z']], 1)
+    if 'fit_offset' in (vertices.dtype.names or ()):
+        p = p - vertices['fit_offset'][:, None] * np.stack([vertices['nx'], vertices['ny'], vertices['nz']], 1)
+    return p
+
+
 def frame(surfel_path, mesh_path, out_path, out_mesh_path):
     """Gives the surfels and the mesh one bounding box (splat_render frames a file's box): each
     gets framing vertices (zero normal, zero axes, never drawn) at the other's extremes beyond
-    its own. Surfels fitted to their blend may lie slightly outside the mesh on convex parts."""
+    its own. Surfels may lie slightly outside the mesh on convex parts."""
     s, header = plyio.read_vertices(surfel_path)
     m, mheader = plyio.read_vertices(mesh_path)
-    sp = np.stack([s['x'], s['y'], s['z']], 1)
-    mp = np.stack([m['x'], m['y'], m['z']], 1)
+    sp = drawn_positions(s)
+    mp = drawn_positions(m)
 
     def extremes_beyond(points, other):
         extra = []
@@ -63,7 +73,7 @@ def frame(surfel_path, mesh_path, out_path, out_mesh_path):
         for c, name in enumerate('xyz'):
             d[name] = positions[extra, c]
         if 'blend_scale' in (vertices.dtype.names or ()):
-            d['blend_scale'] = 1  # the neutral value (.surfel version 2)
+            d['blend_scale'] = 1  # its neutral value; fit_offset's (.surfel version 3) is the zero above
         return np.concatenate([vertices, d])
 
     from_mesh, from_surfels = extremes_beyond(mp, sp), extremes_beyond(sp, mp)
@@ -85,8 +95,8 @@ def frame(surfel_path, mesh_path, out_path, out_mesh_path):
         f.write(('\n'.join(lines) + '\n').encode('ascii'))
         mesh_out.tofile(f)
         f.write(faces)
-    op = np.stack([out['x'], out['y'], out['z']], 1)
-    mo = np.stack([mesh_out['x'], mesh_out['y'], mesh_out['z']], 1)
+    op = drawn_positions(out)
+    mo = drawn_positions(mesh_out)
     assert np.array_equal(op.min(0), mo.min(0)) and np.array_equal(op.max(0), mo.max(0)), 'box not matched'
     print('%s: %d surfels + %d framing vertices; %s: %d mesh vertices + %d framing vertices'
           % (out_path, len(s), len(from_mesh), out_mesh_path, len(m), len(from_surfels)))

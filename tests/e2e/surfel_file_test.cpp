@@ -20,7 +20,7 @@ using surfel_io::SurfelRecord;
 const char* const kHeader =
     "ply\n"
     "format binary_little_endian 1.0\n"
-    "comment gaussphere-surfel 2\n"
+    "comment gaussphere-surfel 3\n"
     "element vertex 3\n"
     "property float x\nproperty float y\nproperty float z\n"
     "property float nx\nproperty float ny\nproperty float nz\n"
@@ -29,6 +29,7 @@ const char* const kHeader =
     "property float minor_x\nproperty float minor_y\nproperty float minor_z\n"
     "property float quality\n"
     "property float blend_scale\n"
+    "property float fit_offset\n"
     "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
     "end_header\n";
 
@@ -52,6 +53,26 @@ std::string withHeaderEdit(const std::string& from, const std::string& to) {
   return bytes.replace(at, from.size(), to);
 }
 
+// `surfels` (fewer than 10) as a file of an older version: without fit_offset (version 2),
+// and without blend_scale too (version 1).
+std::string olderVersionBytes(const std::vector<SurfelRecord>& surfels, int version) {
+  const std::string current = encode(surfels);
+  const std::size_t headerSize = std::string(kHeader).size();
+  std::string bytes = current.substr(0, headerSize);
+  bytes.replace(bytes.find("gaussphere-surfel 3"), 19, "gaussphere-surfel " + std::to_string(version));
+  const char* const newestFloats[] = {"fit_offset", "blend_scale"};
+  const std::size_t droppedFloats = 3 - version;
+  for (std::size_t f = 0; f < droppedFloats; ++f) {
+    const std::string line = std::string("property float ") + newestFloats[f] + "\n";
+    bytes.erase(bytes.find(line), line.size());
+  }
+  for (std::size_t r = 0; r < surfels.size(); ++r) {
+    const std::string record = current.substr(headerSize + r * 68, 68);
+    bytes += record.substr(0, 64 - 4 * droppedFloats) + record.substr(64, 4);  // floats, colour
+  }
+  return bytes;
+}
+
 // Expects `bytes` to be refused with a reason containing `reason`.
 void expectRefused(const std::string& bytes, const std::string& reason) {
   std::vector<SurfelRecord> surfels(1);
@@ -61,30 +82,46 @@ void expectRefused(const std::string& bytes, const std::string& reason) {
   EXPECT_TRUE(surfels.empty());
 }
 
-TEST(SurfelFile, WritesTheDocumentedHeaderAnd64BytesPerSurfel) {
+TEST(SurfelFile, WritesTheDocumentedHeaderAnd68BytesPerSurfel) {
   const std::string bytes = encode(syntheticSurfels(3));
   ASSERT_EQ(bytes.substr(0, std::string(kHeader).size()), kHeader);
-  EXPECT_EQ(bytes.size(), std::string(kHeader).size() + 3 * 64);
+  EXPECT_EQ(bytes.size(), std::string(kHeader).size() + 3 * 68);
+}
+
+// Version 2 files (no fit_offset, 64 bytes per surfel) read with a fit offset of 0.
+TEST(SurfelFile, ReadsVersion2Files) {
+  std::vector<SurfelRecord> expected = syntheticSurfels(4);  // the second and third are fitted
+  const std::string v2 = olderVersionBytes(expected, 2);
+  const std::size_t headerSize = v2.find("end_header\n") + 11;
+  ASSERT_NE(v2.find("comment gaussphere-surfel 2\n"), std::string::npos);
+  ASSERT_NE(v2.find("property float blend_scale\nproperty uchar red\n"), std::string::npos);
+  ASSERT_EQ(v2.size(), headerSize + 4 * 64);
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  ASSERT_TRUE(decode(v2, surfels, error)) << error;
+  ASSERT_TRUE(surfel_io::hasFitOffsets(expected));
+  for (SurfelRecord& s : expected) s.fitOffset = 0;
+  EXPECT_EQ(surfels, expected);
+  EXPECT_TRUE(surfel_io::hasBlendScales(surfels));
+  EXPECT_FALSE(surfel_io::hasFitOffsets(surfels));
+  expectRefused(v2 + std::string(4, '\0'), "4 unexpected bytes after the last surfel");
 }
 
 // Version 1 files (no blend_scale, 60 bytes per surfel) read with a blend scale of 1.
 TEST(SurfelFile, ReadsVersion1Files) {
   std::vector<SurfelRecord> expected = syntheticSurfels(4);  // the fourth has a blend scale of 1/4
-  const std::string v2 = encode(expected);
-  const std::size_t headerSize = std::string(kHeader).size();
-  std::string v1 = std::string(kHeader);
-  v1.replace(v1.find("gaussphere-surfel 2"), 19, "gaussphere-surfel 1");
-  v1.replace(v1.find("vertex 3"), 8, "vertex 4");
-  v1.erase(v1.find("property float blend_scale\n"), 27);
-  for (std::size_t r = 0; r < 4; ++r) {
-    const std::string record = v2.substr(headerSize + r * 64, 64);
-    v1 += record.substr(0, 56) + record.substr(60, 4);  // without the blend scale
-  }
+  const std::string v1 = olderVersionBytes(expected, 1);
+  ASSERT_NE(v1.find("comment gaussphere-surfel 1\n"), std::string::npos);
+  ASSERT_NE(v1.find("property float quality\nproperty uchar red\n"), std::string::npos);
+  ASSERT_EQ(v1.size(), v1.find("end_header\n") + 11 + 4 * 60);
   std::vector<SurfelRecord> surfels;
   std::string error;
   ASSERT_TRUE(decode(v1, surfels, error)) << error;
   ASSERT_TRUE(surfel_io::hasBlendScales(expected));
-  for (SurfelRecord& s : expected) s.blendScale = 1;
+  for (SurfelRecord& s : expected) {
+    s.blendScale = 1;
+    s.fitOffset = 0;
+  }
   EXPECT_EQ(surfels, expected);
   EXPECT_FALSE(surfel_io::hasBlendScales(surfels));
   expectRefused(v1 + std::string(4, '\0'), "4 unexpected bytes after the last surfel");
@@ -93,12 +130,14 @@ TEST(SurfelFile, ReadsVersion1Files) {
 TEST(SurfelFile, StoresLittleEndianFloatsAndBytesInPropertyOrder) {
   SurfelRecord s;
   s.position = {{1.0f, 0, 0}};
+  s.fitOffset = -2.0f;
   s.color = {{1, 2, 3, 4}};
   const std::string bytes = encode({s});
-  const std::string data = bytes.substr(bytes.size() - 64);
+  const std::string data = bytes.substr(bytes.size() - 68);
   EXPECT_EQ(data.substr(0, 4), std::string("\x00\x00\x80\x3f", 4));  // 1.0f
   EXPECT_EQ(data.substr(56, 4), std::string("\x00\x00\x80\x3f", 4));  // blend scale 1.0f
-  EXPECT_EQ(data.substr(60), std::string("\x01\x02\x03\x04", 4));
+  EXPECT_EQ(data.substr(60, 4), std::string("\x00\x00\x00\xc0", 4));  // fit offset -2.0f
+  EXPECT_EQ(data.substr(64), std::string("\x01\x02\x03\x04", 4));
 }
 
 TEST(SurfelFile, RoundTripThroughAFileIsBitExact) {
@@ -108,8 +147,10 @@ TEST(SurfelFile, RoundTripThroughAFileIsBitExact) {
   extremes.normal = {{FLT_MIN / 4, FLT_EPSILON, std::nextafter(1.0f, 2.0f)}};
   extremes.radius = FLT_MIN;
   extremes.quality = 16777216.0f;
+  extremes.fitOffset = -FLT_MIN / 2;
   extremes.color = {{0, 255, 128, 0}};
   surfels.push_back(extremes);
+  ASSERT_TRUE(surfel_io::hasFitOffsets(surfels));
 
   const std::string path = testing::TempDir() + "surfel_file_roundtrip.surfel";
   std::string error;
@@ -156,14 +197,16 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
   expectRefused(withHeaderEdit("binary_little_endian", "binary_big_endian"),
                 "unsupported PLY encoding");
   expectRefused(withHeaderEdit("format binary_little_endian 1.0\n", ""), "no 'format' line");
-  expectRefused(withHeaderEdit("comment gaussphere-surfel 2\n", ""), "not a .surfel file");
-  expectRefused(withHeaderEdit("gaussphere-surfel 2", "gaussphere-surfel 3"),
+  expectRefused(withHeaderEdit("comment gaussphere-surfel 3\n", ""), "not a .surfel file");
+  expectRefused(withHeaderEdit("gaussphere-surfel 3", "gaussphere-surfel 4"),
                 "unsupported .surfel version");
-  // A version 1 comment on version 2 data: the layout does not match the version.
-  expectRefused(withHeaderEdit("gaussphere-surfel 2", "gaussphere-surfel 1"),
+  // An older version's comment on version 3 data: the layout does not match the version.
+  expectRefused(withHeaderEdit("gaussphere-surfel 3", "gaussphere-surfel 2"),
+                "unexpected 'property float fit_offset' (vertex property 16");
+  expectRefused(withHeaderEdit("gaussphere-surfel 3", "gaussphere-surfel 1"),
                 "unexpected 'property float blend_scale' (vertex property 15");
-  expectRefused(withHeaderEdit("comment gaussphere-surfel 2\n",
-                               "comment gaussphere-surfel 2\ncomment gaussphere-surfel 1\n"),
+  expectRefused(withHeaderEdit("comment gaussphere-surfel 3\n",
+                               "comment gaussphere-surfel 3\ncomment gaussphere-surfel 2\n"),
                 "two different .surfel versions");
   expectRefused(withHeaderEdit("end_header", "element face 0\nend_header"),
                 "unexpected 'element face 0'");
@@ -176,9 +219,9 @@ TEST(SurfelFile, RefusesHeadersOtherThanTheSurfelLayout) {
                 "unexpected 'property float z' (vertex property 2");
   expectRefused(withHeaderEdit("uchar alpha", "list uchar int vertex_indices"),
                 "unexpected 'property list");
-  expectRefused(withHeaderEdit("property uchar alpha\n", ""), "has 18 properties instead of 19");
+  expectRefused(withHeaderEdit("property uchar alpha\n", ""), "has 19 properties instead of 20");
   expectRefused(withHeaderEdit("end_header", "property uchar extra\nend_header"),
-                "has 20 properties instead of 19");
+                "has 21 properties instead of 20");
   expectRefused(withHeaderEdit("end_header", "made_up keyword\nend_header"),
                 "unknown PLY header line");
 }
@@ -190,8 +233,8 @@ TEST(SurfelFile, RefusesACountTheDataCannotHoldWithoutAllocatingIt) {
 }
 
 TEST(SurfelFile, AcceptsWhatOtherPlyWritersAdd) {
-  std::string bytes = withHeaderEdit("comment gaussphere-surfel 2\n",
-                                     "obj_info from a tool\ncomment gaussphere-surfel 2\n"
+  std::string bytes = withHeaderEdit("comment gaussphere-surfel 3\n",
+                                     "obj_info from a tool\ncomment gaussphere-surfel 3\n"
                                      "comment another comment\n");
   bytes.replace(bytes.find("float x"), 7, "float32 x");
   bytes.replace(bytes.find("uchar red"), 9, "uint8 red");
@@ -229,6 +272,15 @@ TEST(SurfelFile, EllipseFramesAreAnyNonZeroAxis) {
   surfels[2].minorAxis[1] = 1e-30f;
   EXPECT_TRUE(surfel_io::hasEllipseFrames(surfels));
   EXPECT_TRUE(surfel_io::hasEllipseFrames(syntheticSurfels(1)));
+}
+
+TEST(SurfelFile, FitOffsetsAreAnyNonZeroOffsetAndPartOfTheRecord) {
+  std::vector<SurfelRecord> surfels(3);
+  EXPECT_FALSE(surfel_io::hasFitOffsets(surfels));
+  surfels[2].fitOffset = -1e-30f;
+  EXPECT_TRUE(surfel_io::hasFitOffsets(surfels));
+  EXPECT_NE(surfels[2], surfels[1]);
+  EXPECT_TRUE(surfel_io::hasFitOffsets(syntheticSurfels(2)));
 }
 
 }  // namespace

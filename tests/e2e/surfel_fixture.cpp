@@ -2,8 +2,8 @@
 //
 // Writes COUNT (default 200) synthetic surfels spread over the unit sphere: unit normals,
 // tangent orthogonal ellipse axes (major longer than minor, radius = major length), and
-// quality and colour that differ from surfel to surfel, so that a round trip which loses
-// or mixes up any attribute shows. Deterministic: the same COUNT gives the same bytes.
+// quality, colour, blend scale and fit offset that differ from surfel to surfel, so that a
+// round trip which loses or mixes up any attribute shows. Deterministic: the same COUNT gives the same bytes.
 #include "surfel_fixture.h"
 
 #include <surfel_file.h>

@@ -39,6 +39,7 @@ inline std::vector<surfel_io::SurfelRecord> syntheticSurfels(std::size_t count) 
                          s.majorAxis[2] * s.majorAxis[2]);
     s.quality = float(1 + i % 9);
     s.blendScale = i % 4 == 3 ? 0.25f : 1.f;
+    s.fitOffset = i % 3 == 0 ? 0.f : 0.001f * (float(i % 5) - 2.5f);
     s.color = {{std::uint8_t(i * 37), std::uint8_t(i * 91), std::uint8_t(i * 53),
                 std::uint8_t(i % 2 ? 200 : 255)}};
   }

@@ -9,6 +9,7 @@
 namespace {
 
 using surfel_io::SurfelRecord;
+using vcg::gaussphere::kFitOffsetAttribute;
 using vcg::gaussphere::kMajorAxisAttribute;
 using vcg::gaussphere::kMinorAxisAttribute;
 
@@ -91,6 +92,23 @@ TEST(SurfelRecordsMesh, RadiusFollowsTheOptionalComponent) {
     EXPECT_EQ(written[i].majorAxis, surfels[i].majorAxis);
     EXPECT_EQ(written[i].quality, 0) << "the mesh has no quality component";
   }
+}
+
+TEST(SurfelRecordsMesh, FitOffsetAttributeOnlyWhenSomeOffsetIsNotZero) {
+  std::vector<SurfelRecord> surfels = syntheticSurfels(6);
+  ASSERT_TRUE(surfel_io::hasFitOffsets(surfels));
+  Mesh fitted;
+  surfel_io::addRecordsToMesh(surfels, fitted);
+  ASSERT_TRUE(hasAttribute(fitted, kFitOffsetAttribute));
+  auto fit = vcg::tri::Allocator<Mesh>::FindPerVertexAttribute<float>(fitted, kFitOffsetAttribute);
+  for (std::size_t i = 0; i < surfels.size(); ++i) EXPECT_EQ(fit[i], surfels[i].fitOffset) << i;
+  EXPECT_EQ(surfel_io::recordsFromMesh(fitted), surfels);
+
+  for (SurfelRecord& s : surfels) s.fitOffset = 0;
+  Mesh unfitted;
+  surfel_io::addRecordsToMesh(surfels, unfitted);
+  EXPECT_FALSE(hasAttribute(unfitted, kFitOffsetAttribute));
+  EXPECT_EQ(surfel_io::recordsFromMesh(unfitted), surfels);
 }
 
 TEST(SurfelRecordsMesh, NoSurfelsAddNothing) {

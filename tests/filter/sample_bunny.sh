@@ -16,13 +16,13 @@ grep -q "Gaussian sphere resampling: .* surfels .*; time [0-9.]* s (neighbours" 
 "$RUN_MESHLABSERVER" -i "$SAMPLE_DIR/bunny.ply" -s "$SAMPLE_DIR/resample_colorize.mlx" \
   -o coloured.surfel >coloured.log 2>&1
 "$SURFEL_CHECK" coloured.surfel --count "$count" --require-ellipses
-# ...and the surfels carry the cluster colours (64-byte records, RGBA in the last 4 bytes).
+# ...and the surfels carry the cluster colours (68-byte records, RGBA in the last 4 bytes).
 python3 - coloured.surfel <<'PY'
 import sys
 data = open(sys.argv[1], "rb").read()
 body = data.split(b"end_header\n", 1)[1]
-assert len(body) % 64 == 0, len(body)
-colours = {body[i + 60:i + 64] for i in range(0, len(body), 64)}
+assert len(body) % 68 == 0, len(body)
+colours = {body[i + 64:i + 68] for i in range(0, len(body), 68)}
 print(f"coloured.surfel: {len(colours)} distinct surfel colours")
 sys.exit(0 if len(colours) > 100 else 1)
 PY

@@ -16,6 +16,7 @@ struct VertexRecord
     float radius;
     float majorAxis[3];
     float minorAxis[3];
+    float fitOffset;
     unsigned char color[4];
 };
 
@@ -73,6 +74,8 @@ PointSetFile readPointSetFile(const std::string &path)
     const bool hasEllipses =
         readAll(file, *vertexElement, {"major_x", "major_y", "major_z"}, offsetof(VertexRecord, majorAxis)) &&
         readAll(file, *vertexElement, {"minor_x", "minor_y", "minor_z"}, offsetof(VertexRecord, minorAxis));
+    const bool hasFitOffsets =
+        readScalar(file, *vertexElement, "fit_offset", vcg::ply::T_FLOAT, offsetof(VertexRecord, fitOffset));
     bool hasColors = true;
     const char *const channels[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; ++c)
@@ -96,6 +99,7 @@ PointSetFile readPointSetFile(const std::string &path)
 
     PointSetFile result;
     SurfelArrays &s = result.surfels;
+    std::vector<float> fitOffsets;
     for (std::size_t e = 0; e < file.elements.size(); ++e) {
         file.SetCurElement(int(e));
         const int count = file.elements[e].number;
@@ -116,6 +120,8 @@ PointSetFile readPointSetFile(const std::string &path)
                 }
                 if (hasColors)
                     s.colors.insert(s.colors.end(), v.color, v.color + 4);
+                if (hasFitOffsets)
+                    fitOffsets.push_back(v.fitOffset);
             }
         } else if (&file.elements[e] == faceElement && hasFaces) {
             for (int i = 0; i < count; ++i) {
@@ -132,6 +138,7 @@ PointSetFile readPointSetFile(const std::string &path)
                 file.Read(skipped); // no property of this element is stored
         }
     }
+    moveToSampledSurface(s, fitOffsets);
     result.hasNormals = hasNormals && std::any_of(s.normals.begin(), s.normals.end(), [](float v) { return v != 0.0f; });
     const unsigned vertexCount = unsigned(s.size());
     if (std::any_of(result.triangles.begin(), result.triangles.end(), [&](unsigned i) { return i >= vertexCount; }))
