@@ -37,7 +37,8 @@ QString FilterGaussSpherePlugin::filterInfo(FilterIDType filter) const
                "The result is a new layer <i>&lt;name&gt; resampled</i> with unit normals, per-vertex "
                "radius, quality = number of input points represented, and the per-vertex attributes "
                "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors), and with a maximum "
-               "error <i>SurfelBlendScale</i> where the blend of a surfel was narrowed. Save it as "
+               "error <i>SurfelBlendScale</i> where the blend of a surfel was narrowed, and <i>SurfelFitOffset</i> where "
+               "surfels were fitted to their blended surface (FitOffsets). Save it as "
                "<i>.surfel</i> to keep the ellipses; PLY keeps position, normal and radius only.<br>"
                "The input needs per-vertex normals (Filters &gt; Normals, Curvatures and Orientation &gt; "
                "Compute normals for point sets); points with a zero or invalid normal are skipped.<br><br>"
@@ -120,8 +121,9 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "and the Surfel Approximation Error filter draw it) passes through the input points on average, "
         "instead of leaving the surfel at its cluster's centroid, which lies inside curved surfaces. Lowers "
         "the distance error of smooth scans by a quarter to a third at little cost; clusters at sharp creases "
-        "keep their place. Splat renderings lose about 1 dB of PSNR against the original surface with it (the "
-        "splats stand off the surface a little): for splat rendering alone, turn it off. "
+        "keep their place. Each move is kept in the per-vertex attribute <i>SurfelFitOffset</i> (and in .surfel "
+        "files), from which the Ellipse Splatting render mode draws each splat at its unfitted position, on the "
+        "sampled surface: splats blend shading, not positions, and fitted ones would swell the silhouettes. "
         "With a Maximum error the surfels are fitted in every round of its check, so the bound holds for them."));
     par.addParam(RichBool("ColorizeClusters", false, "Colour input by cluster",
         "Give every cluster a random colour on the input layer's vertices, to inspect the clustering."));

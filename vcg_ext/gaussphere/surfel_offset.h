@@ -5,11 +5,12 @@
 // bench/ measures, is the blend of their positions (an MLS projection, vcg_ext/surfel_error):
 // between two surfels on a curved surface the blend follows neither's plane, and the surface it
 // draws lies off the samples by a fraction of the curvature times the spacing squared, inside or
-// outside depending on the sizes and weights around. (A splat renderer draws each surfel where it
-// stands instead: fitted surfels swell its silhouettes a little, about 1 dB of PSNR against the
-// original mesh in bench/render; hence ResamplingParams::fitOffsets.) FitSurfelOffsets measures that directly: each member of a
-// cluster is compared with the blended plane at it, and the surfel moves along its normal by the
-// mean signed distance, the least-squares offset of that surfel for the blend it takes part in.
+// outside depending on the sizes and weights around. FitSurfelOffsets measures that directly: each
+// member of a cluster is compared with the blended plane at it, and the surfel moves along its
+// normal by the mean signed distance, the least-squares offset of that surfel for the blend it
+// takes part in. The move is kept in Surfel::fitOffset: a splat renderer blends shading, not
+// positions, and draws each surfel at its unfitted position (fitted ones swelled the silhouettes:
+// -1 dB of PSNR against the original mesh in bench/render).
 //
 // The blended plane at a point is one step of the projection of vcg_ext/surfel_error: the
 // Gaussian-weighted mean of the surfels around it (its own and those of the clusters of its
