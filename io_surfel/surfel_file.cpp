@@ -163,9 +163,9 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount,
         hasMagic = true;
         floatCount = version->floatCount;
       } else if (text.compare(0, 18, "gaussphere-surfel ") == 0) {
-        return fail(error, "unsupported .surfel version '" + text + "' (this reader reads '" +
-                               kSurfelFileMagic + "', '" + kSurfelFileMagicVersion2 + "' and '" +
-                               kSurfelFileMagicVersion1 + "')");
+        std::string known;
+        for (const Version& v : kVersions) known += std::string(known.empty() ? "" : ", ") + "'" + v.magic + "'";
+        return fail(error, "unsupported .surfel version '" + text + "' (this reader reads " + known + ")");
       }
     } else if (keyword == "format") {
       if (words.size() != 3 || words[1] != "binary_little_endian" || words[2] != "1.0")

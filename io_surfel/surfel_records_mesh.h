@@ -99,13 +99,9 @@ void addRecordsToMesh(const std::vector<SurfelRecord>& surfels, MeshType& mesh) 
     major = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMajorAxisAttribute);
     minor = Allocator::template GetPerVertexAttribute<Point3>(mesh, kMinorAxisAttribute);
   }
-  typename MeshType::template PerVertexAttributeHandle<float> blend, fit;
-  const bool withBlend = hasBlendScales(surfels);
-  if (withBlend)
-    blend = Allocator::template GetPerVertexAttribute<float>(mesh, vcg::gaussphere::kBlendScaleAttribute);
-  const bool withFit = hasFitOffsets(surfels);
-  if (withFit)
-    fit = Allocator::template GetPerVertexAttribute<float>(mesh, vcg::gaussphere::kFitOffsetAttribute);
+  const bool withBlend = hasBlendScales(surfels), withFit = hasFitOffsets(surfels);
+  auto blend = vcg::gaussphere::OptionalPerVertexFloat(mesh, vcg::gaussphere::kBlendScaleAttribute, withBlend);
+  auto fit = vcg::gaussphere::OptionalPerVertexFloat(mesh, vcg::gaussphere::kFitOffsetAttribute, withFit);
   for (const SurfelRecord& s : surfels) {
     v->P() = detail::toPoint3<Point3>(s.position);
     if (hasNormal) v->N() = detail::toPoint3<typename MeshType::VertexType::NormalType>(s.normal);

@@ -108,7 +108,7 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
             radii.push_back(hasRadii(layer) && v.cR() > 0 ? v.cR() : 0.0f);
         }
     }
-    moveToSampledSurface(surfels, fitOffsets);
+    undoFitOffsets(surfels, fitOffsets);
     if (hasEllipses)
         return surfels;
 

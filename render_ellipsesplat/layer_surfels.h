@@ -17,7 +17,7 @@ bool layerHasNormals(const MeshModel &layer);
 // Surfels of every live vertex: ellipses from the EllipseMajorAxis/EllipseMinorAxis
 // attributes when the layer has both, otherwise circles whose radius is R() when the radius
 // component is enabled and positive, else the distance to the k-th nearest neighbour. With the
-// SurfelFitOffset attribute they stand at their unfitted positions (moveToSampledSurface).
+// SurfelFitOffset attribute they stand at their unfitted positions (undoFitOffsets).
 SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours);
 
 // Changes whenever anything surfelsOfLayer reads changes (positions, normals, colours,

@@ -54,14 +54,17 @@ void assignCircularFrames(SurfelArrays &surfels, const std::vector<float> &radii
     }
 }
 
-void moveToSampledSurface(SurfelArrays &surfels, const std::vector<float> &fitOffsets)
+void undoFitOffsets(SurfelArrays &surfels, const std::vector<float> &fitOffsets)
 {
     assert(fitOffsets.empty() || fitOffsets.size() == surfels.size());
     if (fitOffsets.size() != surfels.size() || surfels.normals.size() != surfels.positions.size())
         return;
-    for (std::size_t i = 0; i < fitOffsets.size(); ++i)
+    for (std::size_t i = 0; i < fitOffsets.size(); ++i) {
+        if (!std::isfinite(fitOffsets[i]))
+            continue; // a damaged file must not throw a splat (or the framing box) to infinity
         for (int c = 0; c < 3; ++c)
             surfels.positions[3 * i + c] -= fitOffsets[i] * surfels.normals[3 * i + c];
+    }
 }
 
 } // namespace splat

@@ -32,13 +32,12 @@ constexpr int kDefaultSplatNeighbours = 8;
 // normal (E × F points along the normal).
 void assignCircularFrames(SurfelArrays &surfels, const std::vector<float> &radii);
 
-// Moves each surfel back from where the resampler fitted it to the sampled surface:
-// position -= fitOffset · normal (the SurfelFitOffset attribute, `fit_offset` in .surfel files;
-// docs/surfel_format.md). The fit serves the blended (MLS) surface of positions; splats, which
-// blend only shading, drawn at the fitted positions swell the silhouettes on convex parts
-// (bench/render, three-pass luma PSNR against the mesh: 22.7 / 24.3 dB fitted, 23.7 / 25.6 dB
-// unfitted for the dragon / igea). Empty `fitOffsets` (no fit recorded) and surfels without
-// normals are left as they are; otherwise there is one offset per surfel (asserted).
-void moveToSampledSurface(SurfelArrays &surfels, const std::vector<float> &fitOffsets);
+// Moves each surfel back from where the resampler fitted it to its blended (MLS) surface onto
+// the sampled surface: position -= fitOffset · normal (the SurfelFitOffset attribute,
+// `fit_offset` in .surfel files; docs/surfel_format.md). Splats blend shading, not positions:
+// drawn at the fitted positions they swell the silhouettes (bench/render). Empty `fitOffsets`
+// (no fit recorded) and surfels without normals are left as they are; otherwise there is one
+// offset per surfel (asserted), and a non-finite one counts as 0.
+void undoFitOffsets(SurfelArrays &surfels, const std::vector<float> &fitOffsets);
 
 } // namespace splat

@@ -42,7 +42,7 @@ GREY = 192  # tools/splat_render's default albedo, which the mesh (no colours) g
 # not draw them. Colours are set to the mesh's grey so that the material is the same.
 def drawn_positions(vertices):
     """Where splat_render draws the vertices: those with a fit_offset moved back along their
-    normals to their unfitted positions (moveToSampledSurface), in float32 as it does."""
+    normals to their unfitted positions (undoFitOffsets), in float32 as it does."""
     p = np.stack([vertices['x'], vertices['y'], vertices['z']], 1)
     if 'fit_offset' in (vertices.dtype.names or ()):
         p = p - vertices['fit_offset'][:, None] * np.stack([vertices['nx'], vertices['ny'], vertices['nz']], 1)

@@ -325,7 +325,8 @@ const LedgerRow kLedger[] = {
     {"cluster label (int)", "clustering.h", 4, 0, "CS"},
     {"ClusterMembers index (int) + offsets", "clustering.h", 4, 8, "cs"},
     {"split planes: centroid + axis (2 Vector3d)", "cluster_normalization.h", 0, 48, "c"},
-    {"surfels (52 B each, result)", "surfel_generation.h", 0, 52, "S"},
+    {"surfels (sizeof(Surfel) each, result)", "surfel_generation.h", 0, double(sizeof(vcg::gaussphere::Surfel)), "S"},
+    {"offset fit: blend weight 20 B + offset 4 B per surfel, transient", "surfel_offset.h", 0, 24, "s"},
 };
 
 /// Expected peak beyond the input in stage s ('R','N','C','S'): the buffers held

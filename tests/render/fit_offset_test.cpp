@@ -1,13 +1,15 @@
 // Surfels the resampler fitted to their blend are drawn at their unfitted positions:
-// moveToSampledSurface, and readPointSetFile applying a `fit_offset` vertex property.
+// undoFitOffsets, and readPointSetFile applying a `fit_offset` vertex property.
 
 #include "point_set_file.h"
 #include "surfel_arrays.h"
+#include "surfel_file.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,12 +45,26 @@ TEST(FitOffsets, MoveToSampledSurfaceMovesAlongTheNormalByTheOffset)
     SurfelArrays surfels;
     surfels.positions = {1, 2, 3, 0, 0, 0};
     surfels.normals = {0, 0, 1, 0.6f, 0.8f, 0};
-    moveToSampledSurface(surfels, {0.5f, -2.0f});
+    undoFitOffsets(surfels, {0.5f, -2.0f});
     expectNear(surfels.positions, {1, 2, 2.5f, 1.2f, 1.6f, 0});
 
     const std::vector<float> moved = surfels.positions;
-    moveToSampledSurface(surfels, {});
+    undoFitOffsets(surfels, {});
     EXPECT_EQ(surfels.positions, moved) << "no fit offsets: nothing to move";
+}
+
+TEST(FitOffsets, NonFiniteOffsetsAndMissingNormalsMoveNothing)
+{
+    SurfelArrays surfels;
+    surfels.positions = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+    surfels.normals = {0, 0, 1, 0, 1, 0, 1, 0, 0};
+    undoFitOffsets(surfels, {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 1.0f});
+    expectNear(surfels.positions, {1, 2, 3, 4, 5, 6, 6, 8, 9});
+
+    SurfelArrays unoriented;
+    unoriented.positions = {1, 2, 3};
+    undoFitOffsets(unoriented, {1.0f});
+    EXPECT_EQ(unoriented.positions, (std::vector<float>{1, 2, 3}));
 }
 
 TEST(FitOffsets, ReadPointSetFileAppliesTheFitOffsetProperty)
@@ -63,4 +79,26 @@ TEST(FitOffsets, ReadPointSetFileAppliesTheFitOffsetProperty)
     const PointSetFile withoutOffsets = readPointSetFile(plain);
     std::remove(plain.c_str());
     expectNear(withoutOffsets.surfels.positions, {0, 0, 1, 1, 0, 0});
+}
+
+// The path bench/render takes: a binary .surfel (version 3) written by the io_surfel library.
+TEST(FitOffsets, ReadPointSetFileAppliesTheOffsetsOfASurfelFile)
+{
+    std::vector<surfel_io::SurfelRecord> records(2);
+    records[0].position = {{0, 0, 1}};
+    records[0].normal = {{0, 0, 1}};
+    records[0].fitOffset = 0.25f;
+    records[1].position = {{1, 0, 0}};
+    records[1].normal = {{0.6f, 0.8f, 0}};
+    records[1].fitOffset = -0.5f;
+    for (auto &r : records) {
+        r.majorAxis = {{0.1f, 0, 0}};
+        r.minorAxis = {{0, 0.05f, 0}};
+    }
+    const std::string path = testing::TempDir() + "fit_offset.surfel";
+    std::string error;
+    ASSERT_TRUE(surfel_io::writeSurfelFile(path, records, error)) << error;
+    const PointSetFile file = readPointSetFile(path);
+    std::remove(path.c_str());
+    expectNear(file.surfels.positions, {0, 0, 0.75f, 1.3f, 0.4f, 0});
 }

@@ -6,9 +6,9 @@
 //              [--reference seed|current] [--order dfs|bfs]
 //              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
 //
-// Writes the surfels as a PLY point set with normals and radius (the ellipse axes
-// are not part of a standard PLY; use MeshLab with io_surfel for .surfel files) and
-// prints one line of figures.
+// Writes the surfels as a PLY point set with normals and radius, at their fitted positions
+// (the ellipse axes and fit offsets are not part of a standard PLY; use MeshLab with io_surfel
+// for .surfel files) and prints one line of figures.
 #include <cstdio>
 #include <cstring>
 #include <string>

@@ -138,7 +138,7 @@ PointSetFile readPointSetFile(const std::string &path)
                 file.Read(skipped); // no property of this element is stored
         }
     }
-    moveToSampledSurface(s, fitOffsets);
+    undoFitOffsets(s, fitOffsets);
     result.hasNormals = hasNormals && std::any_of(s.normals.begin(), s.normals.end(), [](float v) { return v != 0.0f; });
     const unsigned vertexCount = unsigned(s.size());
     if (std::any_of(result.triangles.begin(), result.triangles.end(), [&](unsigned i) { return i >= vertexCount; }))

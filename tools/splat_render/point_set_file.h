@@ -1,7 +1,7 @@
 #pragma once
 // Reading a point set, a .surfel file or a triangle mesh from PLY (ascii or binary) into plain
 // arrays for the splat renderer. Properties the file lacks stay empty. Surfels with a
-// `fit_offset` property are moved back to their unfitted positions (moveToSampledSurface).
+// `fit_offset` property are moved back to their unfitted positions (undoFitOffsets).
 
 #include "surfel_arrays.h"
 

@@ -21,20 +21,16 @@ constexpr const char *kRepresentativeAttribute = "SurfelIndex";
 constexpr const char *kBlendScaleAttribute = "SurfelBlendScale";
 constexpr const char *kFitOffsetAttribute = "SurfelFitOffset";
 
-namespace detail {
-
-/// A per-vertex float attribute of `mesh` named `name` when `wanted`; when not, none (an old
-/// one is deleted: Clear() keeps attributes).
+/// The per-vertex float attribute `name` of `mesh` when `wanted` (created if needed); when not,
+/// none: an old one is deleted (Clear() keeps attributes) and the handle returned is invalid.
 template <class MeshType>
-typename MeshType::template PerVertexAttributeHandle<float> OptionalFloatAttribute(MeshType &mesh, const char *name,
+typename MeshType::template PerVertexAttributeHandle<float> OptionalPerVertexFloat(MeshType &mesh, const char *name,
                                                                                    bool wanted)
 {
     if (wanted) return vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, name);
     if (vcg::tri::HasPerVertexAttribute(mesh, name)) vcg::tri::Allocator<MeshType>::DeletePerVertexAttribute(mesh, name);
     return typename MeshType::template PerVertexAttributeHandle<float>();
 }
-
-} // namespace detail
 
 /// Replaces the content of `mesh` with one vertex per surfel.
 template <class MeshType>
@@ -49,8 +45,8 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
     const bool narrowed =
         std::any_of(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.blendScale != 1.f; });
     const bool fitted = std::any_of(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.fitOffset != 0.f; });
-    auto blend = detail::OptionalFloatAttribute(mesh, kBlendScaleAttribute, narrowed);
-    auto fit = detail::OptionalFloatAttribute(mesh, kFitOffsetAttribute, fitted);
+    auto blend = OptionalPerVertexFloat(mesh, kBlendScaleAttribute, narrowed);
+    auto fit = OptionalPerVertexFloat(mesh, kFitOffsetAttribute, fitted);
     for (const Surfel &s : surfels) {
         vi->P() = Coord::Construct(s.position);
         vi->N() = Coord::Construct(s.normal);
