@@ -12,6 +12,9 @@ echo "bunny: $count surfels"
 "$RUN_MESHLABSERVER" -i bunny.surfel -o reloaded.surfel >reload.log 2>&1
 cmp bunny.surfel reloaded.surfel
 grep -q "Gaussian sphere resampling: .* surfels .*; time [0-9.]* s (neighbours" bunny.surfel.log
+# The command-line resampler writes the same file, byte for byte, without MeshLab.
+"$GSRESAMPLE" "$SAMPLE_DIR/bunny.ply" standalone.surfel >standalone.log
+cmp bunny.surfel standalone.surfel
 # Colouring the input by cluster works from a script too.
 "$RUN_MESHLABSERVER" -i "$SAMPLE_DIR/bunny.ply" -s "$SAMPLE_DIR/resample_colorize.mlx" \
   -o coloured.surfel >coloured.log 2>&1

@@ -1,14 +1,14 @@
 // gsresample: the Gaussian sphere resampler as a command-line program, without MeshLab.
 //
-//   gsresample INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]
+//   gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]
 //              [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]
 //              [--crease-min-split S] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
 //              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
 //
-// Writes the surfels as a PLY point set with normals and radius, at their fitted positions
-// (the ellipse axes and fit offsets are not part of a standard PLY; use MeshLab with io_surfel
-// for .surfel files) and prints one line of figures.
+// Writes the surfels as a `.surfel` file (docs/surfel_format.md: ellipse axes, fit offsets and
+// blend scales included) when OUTPUT ends in .surfel, otherwise as a PLY point set with normals,
+// radius and quality, at their fitted positions; prints one line of figures.
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -16,6 +16,7 @@
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <vcg_ext/gaussphere/resampling.h>
 #include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <io_surfel/surfel_records_mesh.h>
 
 #include <wrap/io_trimesh/export_ply.h>
 #include <wrap/io_trimesh/import_ply.h>
@@ -25,7 +26,7 @@ using namespace vcg::gaussphere;
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply [--level N] [--k K] [--depth D] [--threshold T]"
+        std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]"
                              " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S]"
                              " [--iterations I] [--base octahedron|icosahedron]"
                              " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION] [--fit-offsets 0|1]\n", argv[0]);
@@ -75,7 +76,19 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;
     }
+    const std::string output = argv[2];
+    const std::string surfelExtension = ".surfel";
+    if (output.size() > surfelExtension.size() &&
+        output.compare(output.size() - surfelExtension.size(), surfelExtension.size(), surfelExtension) == 0) {
+        for (auto &v : out.vert) v.C() = vcg::Color4b::White; // as MeshLab's new layers
+        std::string error;
+        if (surfel_io::writeSurfelFile(output, surfel_io::recordsFromMesh(out), error)) return 0;
+        std::fprintf(stderr, "cannot write %s: %s\n", argv[2], error.c_str());
+        return 1;
+    }
     const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
                          vcg::tri::io::Mask::IOM_VERTQUALITY;
-    return vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(out, argv[2], saveMask, true) == 0 ? 0 : 1;
+    if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(out, argv[2], saveMask, true) == 0) return 0;
+    std::fprintf(stderr, "cannot write %s\n", argv[2]);
+    return 1;
 }
