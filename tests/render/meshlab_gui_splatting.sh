@@ -1,7 +1,9 @@
 #!/bin/bash
 # GUI end-to-end test: the staged MeshLab opens a sparse oriented point set, "Ellipse
 # Splatting" is switched on through Render > Shaders with xdotool, and screenshots before and
-# after show MeshLab's own points replaced by closed, grey-lit splats.
+# after show MeshLab's own points replaced by closed, grey-lit splats. Then the same sphere as a
+# .surfel layer whose surfels carry a fit offset of half the radius (SurfelFitOffset): the splats
+# are drawn at P - offset N, a sphere of half the radius in the same frame (the layer's box).
 #   meshlab_gui_splatting.sh <staged bin/meshlab> <output folder>
 # Runs itself under xvfb-run at 1280x900, the size the menu coordinates below were taken at.
 set -euo pipefail
@@ -27,26 +29,52 @@ awk 'BEGIN {
   }
 }' > "$OUT/sphere.ply"
 
-"$MESHLAB" "$OUT/sphere.ply" > "$OUT/meshlab.log" 2>&1 &
-MESHLAB_PID=$!
-trap 'kill $MESHLAB_PID 2>/dev/null || true' EXIT
-sleep 10
-import -window root "$OUT/before.png"
+# The same points as a .surfel file (docs/surfel_format.md, version 3): tangent ellipses of
+# semi-axes 0.1 and 0.08, every fit offset 0.5.
+python3 - "$OUT/sphere.ply" "$OUT/sphere_fitted.surfel" <<'PY'
+import math, struct, sys
+rows = [list(map(float, l.split())) for l in open(sys.argv[1]).read().split("end_header\n")[1].split("\n") if l.strip()]
+props = "x y z nx ny nz radius major_x major_y major_z minor_x minor_y minor_z quality blend_scale fit_offset".split()
+header = ["ply", "format binary_little_endian 1.0", "comment gaussphere-surfel 3", "element vertex %d" % len(rows)]
+header += ["property float " + p for p in props] + ["property uchar " + c for c in ("red", "green", "blue", "alpha")]
+with open(sys.argv[2], "wb") as f:
+    f.write(("\n".join(header + ["end_header"]) + "\n").encode())
+    for x, y, z, nx, ny, nz in rows:
+        helper = (1, 0, 0) if abs(nx) < 0.9 else (0, 1, 0)
+        u = (ny * helper[2] - nz * helper[1], nz * helper[0] - nx * helper[2], nx * helper[1] - ny * helper[0])
+        length = math.sqrt(sum(c * c for c in u)); u = [c / length for c in u]
+        v = (ny * u[2] - nz * u[1], nz * u[0] - nx * u[2], nx * u[1] - ny * u[0])
+        f.write(struct.pack("<16f4B", x, y, z, nx, ny, nz, 0.1, *[0.1 * c for c in u], *[0.08 * c for c in v],
+                            1, 1, 0.5, 255, 255, 255, 255))
+PY
 
-xdotool mousemove 178 10 click 1   # Render
-sleep 1
-xdotool mousemove 205 34 click 1   # Shaders
-sleep 1
-xdotool mousemove 560 34           # along the submenu's first row, so the submenu stays open
-sleep 0.5
-xdotool mousemove 590 59 click 1   # Ellipse Splatting (the first plugin entry, below None)
-sleep 3
-# The settings panel floats over the view: move it aside before the screenshot.
-for window in $(xdotool search --name "^Ellipse Splatting$" 2>/dev/null); do
-  xdotool windowmove "$window" 900 120
-done
-sleep 2
-import -window root "$OUT/after.png"
+# Opens FILE in the staged MeshLab, screenshots the window to BEFORE.png (if given), switches
+# Ellipse Splatting on through the menus and screenshots AFTER.png; closes MeshLab.
+splat_screenshots() { # FILE LOG AFTER.png [BEFORE.png]
+  "$MESHLAB" "$1" > "$2" 2>&1 &
+  MESHLAB_PID=$!
+  sleep 10
+  if [ -n "${4:-}" ]; then import -window root "$4"; fi
+  xdotool mousemove 178 10 click 1   # Render
+  sleep 1
+  xdotool mousemove 205 34 click 1   # Shaders
+  sleep 1
+  xdotool mousemove 560 34           # along the submenu's first row, so the submenu stays open
+  sleep 0.5
+  xdotool mousemove 590 59 click 1   # Ellipse Splatting (the first plugin entry, below None)
+  sleep 3
+  # The settings panel floats over the view: move it aside before the screenshot.
+  for window in $(xdotool search --name "^Ellipse Splatting$" 2>/dev/null); do
+    xdotool windowmove "$window" 900 120
+  done
+  sleep 2
+  import -window root "$3"
+  kill $MESHLAB_PID 2>/dev/null || true
+  wait $MESHLAB_PID 2>/dev/null || true
+}
+trap 'kill $MESHLAB_PID 2>/dev/null || true' EXIT
+splat_screenshots "$OUT/sphere.ply" "$OUT/meshlab.log" "$OUT/after.png" "$OUT/before.png"
+splat_screenshots "$OUT/sphere_fitted.surfel" "$OUT/meshlab_fitted.log" "$OUT/fitted.png"
 
 # Counts pixels of the 3D view (x 0-432, y 72-598, above the info box) by colour class:
 # MeshLab's default point colour is olive (red well above blue), the splats' default is grey,
@@ -59,7 +87,9 @@ classify() {
 }
 read -r OLIVE_BEFORE GREY_BEFORE < <(classify "$OUT/before.png")
 read -r OLIVE_AFTER GREY_AFTER < <(classify "$OUT/after.png")
-echo "before: olive $OLIVE_BEFORE grey $GREY_BEFORE; after: olive $OLIVE_AFTER grey $GREY_AFTER"
+read -r OLIVE_FITTED GREY_FITTED < <(classify "$OUT/fitted.png")
+echo "before: olive $OLIVE_BEFORE grey $GREY_BEFORE; after: olive $OLIVE_AFTER grey $GREY_AFTER;" \
+     ".surfel with fit offsets 0.5: grey $GREY_FITTED"
 
 status=0
 check() { if ! eval "$1"; then echo "FAILED: $2"; status=1; fi; }
@@ -67,4 +97,7 @@ check "[ $OLIVE_BEFORE -gt 2000 ]" "MeshLab did not draw the point set before sp
 check "[ $OLIVE_AFTER -lt $((OLIVE_BEFORE / 20 + 50)) ]" "MeshLab's points are still drawn after switching splatting on"
 check "[ $GREY_AFTER -gt $((3 * (OLIVE_BEFORE + GREY_BEFORE))) ]" "splats do not cover much more than the points did"
 check "! grep -q 'not supported' '$OUT/meshlab.log'" "MeshLab reports the shader as unsupported"
+# Half the radius: about a quarter of the area (the splats' rims add a little).
+check "[ $GREY_FITTED -gt 1000 ] && [ $GREY_FITTED -lt $((GREY_AFTER / 2)) ]" \
+  "the .surfel layer's splats are not drawn at their unfitted positions (P - SurfelFitOffset N)"
 exit $status
