@@ -73,7 +73,7 @@ bool layerHasNormals(const MeshModel &layer)
     return false;
 }
 
-SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
+SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options)
 {
     SurfelArrays surfels;
     const std::size_t count = std::size_t(layer.cm.vn);
@@ -84,8 +84,8 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
     OffsetHandle offset;
-    const bool hasOffsets = findFitOffsets(layer, offset);
-    std::vector<float> fitOffsets; // per surfel when the layer has them
+    const bool hasOffsets = !options.atFittedPositions && findFitOffsets(layer, offset);
+    std::vector<float> fitOffsets; // per surfel when the layer has them and they are to be undone
     std::vector<float> radii; // per surfel; 0 = not known, estimate from neighbours
     for (const CVertexO &v : layer.cm.vert) {
         if (v.IsD())
@@ -113,7 +113,7 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
         return surfels;
 
     if (std::find(radii.begin(), radii.end(), 0.0f) != radii.end()) {
-        const std::vector<float> spacing = nearestNeighbourRadii(surfels.positions, neighbours);
+        const std::vector<float> spacing = nearestNeighbourRadii(surfels.positions, options.neighbours);
         for (std::size_t i = 0; i < radii.size(); ++i)
             if (radii[i] == 0.0f)
                 radii[i] = spacing[i];
@@ -122,15 +122,15 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours)
     return surfels;
 }
 
-std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours)
+std::uint64_t layerFingerprint(const MeshModel &layer, const LayerSplatOptions &options)
 {
     Fingerprint fingerprint;
     AxisHandle major, minor;
     const bool hasEllipses = findEllipseAttributes(layer, major, minor);
     OffsetHandle offset;
-    const bool hasOffsets = findFitOffsets(layer, offset);
+    const bool hasOffsets = !options.atFittedPositions && findFitOffsets(layer, offset);
     fingerprint.add(layer.cm.vn);
-    fingerprint.add(neighbours);
+    fingerprint.add(options.neighbours);
     fingerprint.add(std::uint32_t(hasEllipses) | std::uint32_t(hasRadii(layer)) << 1 |
                     std::uint32_t(hasColors(layer)) << 2 | std::uint32_t(hasOffsets) << 3);
     for (const CVertexO &v : layer.cm.vert) {

@@ -14,14 +14,22 @@ namespace splat {
 // normals with all-zero normals, so the values are the only way to tell.
 bool layerHasNormals(const MeshModel &layer);
 
+// How a layer becomes splats: the neighbour count that sizes circles, and where surfels fitted
+// to their blend stand (the settings panel's choices).
+struct LayerSplatOptions
+{
+    int neighbours = kDefaultSplatNeighbours;
+    bool atFittedPositions = false; // true: P; false: P - SurfelFitOffset N (undoFitOffsets)
+};
+
 // Surfels of every live vertex: ellipses from the EllipseMajorAxis/EllipseMinorAxis
 // attributes when the layer has both, otherwise circles whose radius is R() when the radius
 // component is enabled and positive, else the distance to the k-th nearest neighbour. With the
-// SurfelFitOffset attribute they stand at their unfitted positions (undoFitOffsets).
-SurfelArrays surfelsOfLayer(const MeshModel &layer, int neighbours);
+// SurfelFitOffset attribute they stand at their unfitted positions unless options say otherwise.
+SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options);
 
 // Changes whenever anything surfelsOfLayer reads changes (positions, normals, colours,
-// radii, ellipse attributes, fit offsets, which of them exist, and the neighbour count).
-std::uint64_t layerFingerprint(const MeshModel &layer, int neighbours);
+// radii, ellipse attributes, fit offsets, which of them exist, and the options).
+std::uint64_t layerFingerprint(const MeshModel &layer, const LayerSplatOptions &options);
 
 } // namespace splat

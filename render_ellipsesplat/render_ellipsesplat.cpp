@@ -151,11 +151,13 @@ void EllipseSplatRenderPlugin::Finalize(QAction *, MeshDocument *, GLArea *view)
 
 const splat::SplatCloud *EllipseSplatRenderPlugin::cloudOf(ViewResources &view, const MeshModel &layer)
 {
-    const int neighbours = panel->neighbours();
-    const std::uint64_t fingerprint = splat::layerFingerprint(layer, neighbours);
+    splat::LayerSplatOptions options;
+    options.neighbours = panel->neighbours();
+    options.atFittedPositions = panel->atFittedPositions();
+    const std::uint64_t fingerprint = splat::layerFingerprint(layer, options);
     CachedCloud &cached = view.clouds[layer.id()];
     if (!cached.cloud || cached.fingerprint != fingerprint) {
-        cached.cloud.reset(new splat::SplatCloud(splat::surfelsOfLayer(layer, neighbours), kDefaultSplatColor));
+        cached.cloud.reset(new splat::SplatCloud(splat::surfelsOfLayer(layer, options), kDefaultSplatColor));
         cached.fingerprint = fingerprint;
     }
     return cached.cloud.get();

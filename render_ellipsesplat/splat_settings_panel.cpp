@@ -48,6 +48,14 @@ SplatSettingsPanel::SplatSettingsPanel(QWidget *parent) : QDockWidget(tr("Ellips
                                  "consistently oriented."));
     form->addRow(tr("Cull back faces"), cullBackFaces);
 
+    fittedPositions = new QCheckBox(body);
+    fittedPositions->setChecked(false);
+    fittedPositions->setToolTip(tr("Surfels the resampler fitted to their blended surface (attribute "
+                                   "SurfelFitOffset) are drawn on the sampled surface, at P - offset N: splats "
+                                   "blend shading, not positions. Tick to draw them where they stand (P), e.g. "
+                                   "after the layer's normals were flipped or recomputed."));
+    form->addRow(tr("Draw at fitted positions"), fittedPositions);
+
     setWidget(body);
     setAllowedAreas(Qt::NoDockWidgetArea);
     setFloating(true);
@@ -57,6 +65,7 @@ SplatSettingsPanel::SplatSettingsPanel(QWidget *parent) : QDockWidget(tr("Ellips
     connect(depthOffset, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, &SplatSettingsPanel::changed);
     connect(neighbourCount, QOverload<int>::of(&QSpinBox::valueChanged), this, &SplatSettingsPanel::changed);
     connect(cullBackFaces, &QCheckBox::toggled, this, &SplatSettingsPanel::changed);
+    connect(fittedPositions, &QCheckBox::toggled, this, &SplatSettingsPanel::changed);
 }
 
 splat::SplatSettings SplatSettingsPanel::settings() const
@@ -72,4 +81,9 @@ splat::SplatSettings SplatSettingsPanel::settings() const
 int SplatSettingsPanel::neighbours() const
 {
     return neighbourCount->value();
+}
+
+bool SplatSettingsPanel::atFittedPositions() const
+{
+    return fittedPositions->isChecked();
 }

@@ -1,6 +1,7 @@
 #pragma once
-// The floating panel that comes up with "Ellipse Splatting": splat mode, splat scale, ε and
-// the neighbour count used to size circular splats of layers without ellipse attributes.
+// The floating panel that comes up with "Ellipse Splatting": splat mode, splat scale, ε, the
+// neighbour count used to size circular splats of layers without ellipse attributes, and where
+// surfels fitted to their blend are drawn.
 
 #include "ellipse_splat_renderer.h"
 
@@ -19,6 +20,9 @@ public:
 
     splat::SplatSettings settings() const;
     int neighbours() const;
+    /// Whether surfels with a SurfelFitOffset are drawn where the resampler fitted them (P)
+    /// rather than on the sampled surface (P - offset N, the default).
+    bool atFittedPositions() const;
 
 signals:
     void changed();
@@ -29,4 +33,5 @@ private:
     QDoubleSpinBox *depthOffset;
     QSpinBox *neighbourCount;
     QCheckBox *cullBackFaces;
+    QCheckBox *fittedPositions;
 };

@@ -3,7 +3,8 @@
 # Splatting" is switched on through Render > Shaders with xdotool, and screenshots before and
 # after show MeshLab's own points replaced by closed, grey-lit splats. Then the same sphere as a
 # .surfel layer whose surfels carry a fit offset of half the radius (SurfelFitOffset): the splats
-# are drawn at P - offset N, a sphere of half the radius in the same frame (the layer's box).
+# are drawn at P - offset N, a sphere of half the radius in the same frame (the layer's box), and
+# at P again once the panel's "Draw at fitted positions" is ticked.
 #   meshlab_gui_splatting.sh <staged bin/meshlab> <output folder>
 # Runs itself under xvfb-run at 1280x900, the size the menu coordinates below were taken at.
 set -euo pipefail
@@ -49,8 +50,9 @@ with open(sys.argv[2], "wb") as f:
 PY
 
 # Opens FILE in the staged MeshLab, screenshots the window to BEFORE.png (if given), switches
-# Ellipse Splatting on through the menus and screenshots AFTER.png; closes MeshLab.
-splat_screenshots() { # FILE LOG AFTER.png [BEFORE.png]
+# Ellipse Splatting on through the menus and screenshots AFTER.png; with TICKED.png, ticks "Draw
+# at fitted positions" in the settings panel and screenshots again; closes MeshLab.
+splat_screenshots() { # FILE LOG AFTER.png [BEFORE.png] [TICKED.png]
   "$MESHLAB" "$1" > "$2" 2>&1 &
   MESHLAB_PID=$!
   sleep 10
@@ -69,12 +71,17 @@ splat_screenshots() { # FILE LOG AFTER.png [BEFORE.png]
   done
   sleep 2
   import -window root "$3"
+  if [ -n "${5:-}" ]; then
+    xdotool mousemove 1105 307 click 1   # the panel's last row: Draw at fitted positions
+    sleep 2
+    import -window root "$5"
+  fi
   kill $MESHLAB_PID 2>/dev/null || true
   wait $MESHLAB_PID 2>/dev/null || true
 }
 trap 'kill $MESHLAB_PID 2>/dev/null || true' EXIT
 splat_screenshots "$OUT/sphere.ply" "$OUT/meshlab.log" "$OUT/after.png" "$OUT/before.png"
-splat_screenshots "$OUT/sphere_fitted.surfel" "$OUT/meshlab_fitted.log" "$OUT/fitted.png"
+splat_screenshots "$OUT/sphere_fitted.surfel" "$OUT/meshlab_fitted.log" "$OUT/fitted.png" "" "$OUT/fitted_at_p.png"
 
 # Counts pixels of the 3D view (x 0-432, y 72-598, above the info box) by colour class:
 # MeshLab's default point colour is olive (red well above blue), the splats' default is grey,
@@ -88,8 +95,9 @@ classify() {
 read -r OLIVE_BEFORE GREY_BEFORE < <(classify "$OUT/before.png")
 read -r OLIVE_AFTER GREY_AFTER < <(classify "$OUT/after.png")
 read -r OLIVE_FITTED GREY_FITTED < <(classify "$OUT/fitted.png")
+read -r OLIVE_AT_P GREY_AT_P < <(classify "$OUT/fitted_at_p.png")
 echo "before: olive $OLIVE_BEFORE grey $GREY_BEFORE; after: olive $OLIVE_AFTER grey $GREY_AFTER;" \
-     ".surfel with fit offsets 0.5: grey $GREY_FITTED"
+     ".surfel with fit offsets 0.5: grey $GREY_FITTED, drawn at the fitted positions: grey $GREY_AT_P"
 
 status=0
 check() { if ! eval "$1"; then echo "FAILED: $2"; status=1; fi; }
@@ -100,4 +108,5 @@ check "! grep -q 'not supported' '$OUT/meshlab.log'" "MeshLab reports the shader
 # Half the radius: about a quarter of the area (the splats' rims add a little).
 check "[ $GREY_FITTED -gt 1000 ] && [ $GREY_FITTED -lt $((GREY_AFTER / 2)) ]" \
   "the .surfel layer's splats are not drawn at their unfitted positions (P - SurfelFitOffset N)"
+check "[ $GREY_AT_P -gt $((3 * GREY_FITTED)) ]" "ticking 'Draw at fitted positions' does not draw the splats at P"
 exit $status
