@@ -61,6 +61,12 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "cannot read %s\n", argv[1]);
         return 1;
     }
+    // vcg leaves the normals of a file without them uninitialised: refuse rather than read garbage.
+    if (!(mask & vcg::tri::io::Mask::IOM_VERTNORMAL)) {
+        std::fprintf(stderr, "%s has no per-vertex normals (nx ny nz); compute them first, e.g. with MeshLab's "
+                             "Compute normals for point sets\n", argv[1]);
+        return 1;
+    }
     try {
         const ResamplingResult r = ResamplePointSet(in, param);
         WriteSurfels(r.surfels, out);
