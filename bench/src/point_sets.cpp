@@ -15,6 +15,8 @@ void LoadPointSet(const std::string &path, PointMesh &mesh)
     int mask = 0;
     if (vcg::tri::io::ImporterPLY<PointMesh>::Open(mesh, path.c_str(), mask) != 0)
         throw std::runtime_error("cannot read " + path);
+    // vcg leaves absent normals uninitialised: every input and output measured here has them.
+    if (!(mask & vcg::tri::io::Mask::IOM_VERTNORMAL)) throw std::runtime_error(path + " has no per-vertex normals");
     if (!(mask & vcg::tri::io::Mask::IOM_VERTRADIUS))
         for (auto &v : mesh.vert) v.R() = 0;
     vcg::tri::UpdateBounding<PointMesh>::Box(mesh);

@@ -16,7 +16,7 @@ using PointMesh = vcg::gaussphere::OrientedPointMesh;
 
 /// Loads a PLY point set with normals. Per-vertex radius is zeroed unless the file has one:
 /// vcg leaves the component uninitialised, and the error metric would read it as a surfel size.
-/// Throws std::runtime_error when the file cannot be read.
+/// Throws std::runtime_error when the file cannot be read or has no normals.
 void LoadPointSet(const std::string &path, PointMesh &mesh);
 
 /// Saves positions and normals (and radius when `withRadius`) as binary PLY.
