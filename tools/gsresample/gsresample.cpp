@@ -86,7 +86,6 @@ int main(int argc, char **argv)
     const std::string surfelExtension = ".surfel";
     if (output.size() > surfelExtension.size() &&
         output.compare(output.size() - surfelExtension.size(), surfelExtension.size(), surfelExtension) == 0) {
-        for (auto &v : out.vert) v.C() = vcg::Color4b::White; // as MeshLab's new layers
         std::string error;
         if (surfel_io::writeSurfelFile(output, surfel_io::recordsFromMesh(out), error)) return 0;
         std::fprintf(stderr, "cannot write %s: %s\n", argv[2], error.c_str());
