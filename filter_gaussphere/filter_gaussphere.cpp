@@ -37,8 +37,8 @@ QString FilterGaussSpherePlugin::filterInfo(FilterIDType filter) const
                "The result is a new layer <i>&lt;name&gt; resampled</i> with unit normals, per-vertex "
                "radius, quality = number of input points represented, and the per-vertex attributes "
                "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors), <i>SurfelFitOffset</i> "
-               "(how far FitOffsets moved each surfel) and, with a maximum error, <i>SurfelBlendScale</i> where "
-               "the blend of a surfel was narrowed. Save it as <i>.surfel</i> to keep them; PLY keeps position, "
+               "(how far FitOffsets moved each surfel) and <i>SurfelBlendScale</i> where the blend of a surfel "
+               "was narrowed (at creases). Save it as <i>.surfel</i> to keep them; PLY keeps position, "
                "normal and radius only (splats of a PLY are drawn at the fitted positions).<br>"
                "The input needs per-vertex normals (Filters &gt; Normals, Curvatures and Orientation &gt; "
                "Compute normals for point sets); points with a zero or invalid normal are skipped.<br><br>"
@@ -91,6 +91,12 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
     par.addParam(RichInt("CreaseClusterSize", defaults.creaseClusterSize, "Maximum cluster size at creases",
         "Clusters touching a crease are split above this many points (0 = no limit); from 4 points on "
         "they are also split when elongated along the edge."));
+    par.addParam(RichFloat("CreaseBlendScale", defaults.creaseBlendScale, "Blend width at creases",
+        "Factor in (0, 1] on the width of the blend weight of the surfels around a crease (clusters of more "
+        "than one point holding a crease point or one of its neighbours; per-vertex attribute SurfelBlendScale): "
+        "the surface the surfels blend into (the moving least squares surface the Surfel Approximation Error "
+        "filter measures on) then follows each face closer to the edge instead of rounding it off. "
+        "The ellipses keep their size. 1 = off; with a Maximum error the bound narrows blends on its own terms."));
     par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
         "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
         "surfel normal, r being the distance to the cluster centroid. 0 means 1% of the bounding box "
@@ -170,6 +176,7 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
     param.maxClusterSize = par.getInt("MaxClusterSize");
     param.creaseAngle = par.getFloat("CreaseAngle");
     param.creaseClusterSize = par.getInt("CreaseClusterSize");
+    param.creaseBlendScale = par.getFloat("CreaseBlendScale");
     const float width = par.getAbsPerc("WeightWidth");
     param.weightWidth = width > 0 ? width : -1.0;
     param.maxIterations = par.getInt("MaxIterations");
@@ -238,6 +245,9 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
         s.inputCount - s.skippedCount, s.outputCount, 100.0 * s.outputCount / std::max(1, s.inputCount - s.skippedCount),
         s.levelUsed, s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.TotalSeconds(), s.secondsNeighbors,
         s.secondsPropagation, s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
+    if (s.surfelsNarrowedAtCreases > 0)
+        Log("Gaussian sphere resampling: %d surfel(s) around creases blend %.2f times as wide", s.surfelsNarrowedAtCreases,
+            param.creaseBlendScale);
     if (s.surfelsFitted > 0)
         Log("Gaussian sphere resampling: %d surfel(s) fitted to the blended surface (longest move %g = %.5f x diagonal)",
             s.surfelsFitted, s.largestFitMove * s.diagonal, s.largestFitMove);

@@ -19,36 +19,6 @@ namespace {
 using namespace vcg::gaussphere;
 using gstest::P3;
 
-struct Measured
-{
-    vcg::tri::SurfelErrorStats stats;
-    std::vector<float> distance; ///< per input point, model units
-};
-
-/// The metric's figures for `r` against `s`, with r's ellipses and representatives.
-Measured Measure(const gstest::PointSet &s, const ResamplingResult &r)
-{
-    OrientedPointMesh input, surfels;
-    gstest::ToMesh(s, input);
-    WriteSurfels(r.surfels, surfels);
-    std::vector<vcg::Point3f> major, minor;
-    std::vector<float> blendScale;
-    for (const Surfel &surfel : r.surfels) {
-        major.push_back(surfel.majorAxis);
-        minor.push_back(surfel.minorAxis);
-        blendScale.push_back(surfel.blendScale);
-    }
-    vcg::tri::SurfelErrorAttributes attributes;
-    attributes.ellipseMajorAxes = &major;
-    attributes.ellipseMinorAxes = &minor;
-    attributes.blendScale = &blendScale;
-    const std::vector<int> representative(r.representative.begin(), r.representative.end());
-    attributes.representative = &representative;
-    Measured m;
-    m.stats = vcg::tri::ComputeSurfelError(input, surfels, vcg::tri::SurfelErrorParams(), attributes, &m.distance);
-    return m;
-}
-
 /// Largest distance of a point to its own surfel's plane, over the bounding-box diagonal.
 double MaxOwnPlaneDistance(const gstest::PointSet &s, const ResamplingResult &r)
 {
@@ -87,11 +57,11 @@ TEST(ErrorBound, MetBoundIsConfirmedByTheMetric)
 {
     const gstest::PointSet s = gstest::FibonacciSphere(6000);
     const ResamplingResult plain = gstest::Resample(s);
-    const double unbounded = Measure(s, plain).stats.normalizedDistance.max;
+    const double unbounded = gstest::Measure(s, plain).stats.normalizedDistance.max;
     const double bound = 0.6 * unbounded;
     const ResamplingResult r = gstest::Resample(s, Bounded(bound));
     gstest::ExpectValidResult(r, s);
-    const Measured m = Measure(s, r);
+    const gstest::Measured m = gstest::Measure(s, r);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
     EXPECT_LE(m.stats.normalizedDistance.max, bound * (1 + 1e-5));
     EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
@@ -112,7 +82,7 @@ TEST(ErrorBound, SharpEdgesMeetTheBoundByNarrowingOnePointSurfels)
     gstest::ExpectValidResult(r, s);
     EXPECT_GT(r.stats.narrowingsForSurfaceBound, 0);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
-    const Measured m = Measure(s, r);
+    const gstest::Measured m = gstest::Measure(s, r);
     EXPECT_LE(m.stats.normalizedDistance.max, bound * (1 + 1e-5));
     EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));
     // A one-point surfel's semi-axis stays the coverage margin times its point's spacing; its
@@ -162,7 +132,7 @@ TEST(ErrorBound, PointsLeftAtTheRoundCapAreTheMetricsOwn)
         ResamplingResult capped;
         capped.surfels = r.surfels;
         capped.representative = clusters.label;
-        const Measured m = Measure(s, capped);
+        const gstest::Measured m = gstest::Measure(s, capped);
         const int above =
             int(std::count_if(m.distance.begin(), m.distance.end(), [&](float d) { return d > bound; }));
         EXPECT_GT(above, 0);
@@ -214,7 +184,7 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
 TEST(ErrorBound, FiguresDescribeTheFinalSurfelsWithATargetCount)
 {
     const gstest::PointSet s = gstest::FibonacciSphere(6000);
-    const double bound = 0.6 * Measure(s, gstest::Resample(s)).stats.normalizedDistance.max;
+    const double bound = 0.6 * gstest::Measure(s, gstest::Resample(s)).stats.normalizedDistance.max;
     const int boundCount = int(gstest::Resample(s, Bounded(bound)).surfels.size());
     ResamplingParams p = Bounded(bound);
     p.targetCount = boundCount + 300;
@@ -222,7 +192,7 @@ TEST(ErrorBound, FiguresDescribeTheFinalSurfelsWithATargetCount)
     gstest::ExpectValidResult(r, s);
     EXPECT_GE(int(r.surfels.size()), p.targetCount);
     EXPECT_GT(r.stats.splitsForTarget, 0);
-    const Measured m = Measure(s, r);
+    const gstest::Measured m = gstest::Measure(s, r);
     EXPECT_NEAR(r.stats.surfaceErrorMax, m.stats.normalizedDistance.max, 1e-6 * bound + 1e-9);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
     EXPECT_LE(MaxOwnPlaneDistance(s, r), bound * (1 + 1e-5));

@@ -9,6 +9,8 @@
 
 #include <vcg_ext/gaussphere/principal_axes.h>
 #include <vcg_ext/gaussphere/resampling.h>
+#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/surfel_error/surfel_error.h>
 
 #include "test_support.h"
 
@@ -83,6 +85,37 @@ inline void ExpectValidResult(const vcg::gaussphere::ResamplingResult &r, const 
         }
     }
     EXPECT_EQ(bad, 0) << "invalid surfels or uncovered members";
+}
+
+/// The error metric's figures (vcg_ext/surfel_error) for a resampling and its points.
+struct Measured
+{
+    vcg::tri::SurfelErrorStats stats;
+    std::vector<float> distance; ///< per input point, model units
+};
+
+/// The metric's figures for `r` against `s`, with r's ellipses, blend scales and representatives.
+inline Measured Measure(const PointSet &s, const vcg::gaussphere::ResamplingResult &r)
+{
+    vcg::gaussphere::OrientedPointMesh input, surfels;
+    ToMesh(s, input);
+    vcg::gaussphere::WriteSurfels(r.surfels, surfels);
+    std::vector<vcg::Point3f> major, minor;
+    std::vector<float> blendScale;
+    for (const vcg::gaussphere::Surfel &surfel : r.surfels) {
+        major.push_back(surfel.majorAxis);
+        minor.push_back(surfel.minorAxis);
+        blendScale.push_back(surfel.blendScale);
+    }
+    vcg::tri::SurfelErrorAttributes attributes;
+    attributes.ellipseMajorAxes = &major;
+    attributes.ellipseMinorAxes = &minor;
+    attributes.blendScale = &blendScale;
+    const std::vector<int> representative(r.representative.begin(), r.representative.end());
+    attributes.representative = &representative;
+    Measured m;
+    m.stats = vcg::tri::ComputeSurfelError(input, surfels, vcg::tri::SurfelErrorParams(), attributes, &m.distance);
+    return m;
 }
 
 } // namespace gstest

@@ -283,6 +283,8 @@ TEST(ResamplingPipeline, WriteSurfelsStoresAxesAndRadius)
         EXPECT_EQ(out.vert[i].Q(), float(f.memberCount));
     }
     EXPECT_TRUE(out.bbox.IsIn(r.surfels[0].position));
+    // A smooth surface has no crease to narrow blends at: no blend scale attribute.
+    WriteSurfels(gstest::Resample(gstest::FibonacciSphere(2000)).surfels, out);
     EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute)) << "every blend scale is 1";
 }
 
@@ -309,7 +311,7 @@ TEST(ResamplingPipeline, WriteSurfelsStoresFitOffsetsWhenFitted)
     EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kFitOffsetAttribute));
 }
 
-// A narrowed blend (the error bound's) is stored as SurfelBlendScale, for every surfel.
+// A narrowed blend (the error bound's, or around creases) is stored as SurfelBlendScale, for every surfel.
 TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
 {
     const gstest::PointSet s = gstest::CubeSurface(24, true);
@@ -322,8 +324,16 @@ TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
     ASSERT_TRUE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
     auto blend = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<float>(out, kBlendScaleAttribute);
     for (size_t i = 0; i < r.surfels.size(); ++i) EXPECT_EQ(blend[i], r.surfels[i].blendScale) << i;
+    // The default narrows around the cube's edges.
+    const ResamplingResult creases = gstest::Resample(s);
+    ASSERT_GT(creases.stats.surfelsNarrowedAtCreases, 0);
+    WriteSurfels(creases.surfels, out);
+    blend = vcg::tri::Allocator<OrientedPointMesh>::GetPerVertexAttribute<float>(out, kBlendScaleAttribute);
+    for (size_t i = 0; i < creases.surfels.size(); ++i) EXPECT_EQ(blend[i], creases.surfels[i].blendScale) << i;
     // Written again without narrowing into the same mesh: no stale attribute (Clear() keeps them).
-    WriteSurfels(gstest::Resample(s).surfels, out);
+    p = ResamplingParams();
+    p.creaseBlendScale = 1;
+    WriteSurfels(gstest::Resample(s, p).surfels, out);
     EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
 }
 

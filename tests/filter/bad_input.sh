@@ -31,6 +31,7 @@ expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with PropagationDepth=-3)" "Pro
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxClusterSize=-1)" "MaxClusterSize"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseAngle"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseClusterSize=-2)" "CreaseClusterSize"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=0)" "CreaseBlendScale"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply

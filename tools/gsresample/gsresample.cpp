@@ -27,7 +27,7 @@ int main(int argc, char **argv)
 {
     if (argc < 3) {
         std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]"
-                             " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S]"
+                             " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S] [--crease-blend F]"
                              " [--iterations I] [--base octahedron|icosahedron]"
                              " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION] [--fit-offsets 0|1]\n", argv[0]);
         return 2;
@@ -44,6 +44,7 @@ int main(int argc, char **argv)
         else if (key == "--crease-angle") param.creaseAngle = std::stod(value);
         else if (key == "--crease-cluster") param.creaseClusterSize = std::stoi(value);
         else if (key == "--crease-min-split") param.creaseMinSplitSize = std::stoi(value);
+        else if (key == "--crease-blend") param.creaseBlendScale = std::stof(value);
         else if (key == "--iterations") param.maxIterations = std::stoi(value);
         else if (key == "--weight-width") param.weightWidth = std::stod(value);
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);

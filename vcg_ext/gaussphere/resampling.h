@@ -10,6 +10,7 @@
 //   beyond the paper: an exact size or an error bound              cluster_refinement.h,
 //                                                                   surface_error_bound.h
 //   and surfels fitted to the blended surface                       surfel_offset.h
+//   with narrower blends around creases                             crease_blend.h
 //
 // Usage:
 //   vcg::gaussphere::ResamplingParams param;          // the paper's defaults
@@ -60,6 +61,7 @@
 #include "cluster_normalization.h"
 #include "cluster_refinement.h"
 #include "clustering.h"
+#include "crease_blend.h"
 #include "flat_vector.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
@@ -86,6 +88,8 @@ struct ResamplingParams
     double creaseAngle = 45;         ///< degrees: normals turned by more mark a crease (0 = no crease limits)
     int creaseClusterSize = 5;       ///< maxClusterSize of clusters at a crease (0 = off)
     int creaseMinSplitSize = 4;      ///< minSplitSize of clusters at a crease
+    float creaseBlendScale = 0.7f;   ///< blend width of the surfels around creases (crease_blend.h);
+                                     ///< in (0, 1], 1 = off; not with maxErrorFraction, which narrows its own
     double weightWidth = -1;         ///< h of the normal weights; < 0: 0.01 x bbox diagonal
     int maxIterations = 10;          ///< cap on normalization + rejoining rounds
     double convergenceFraction = 0.01; ///< stop when the count changes by less than this x N
@@ -114,6 +118,7 @@ struct ResamplingParams
         if (!(creaseAngle >= 0 && creaseAngle < 120)) return "CreaseAngle must be between 0 (off) and 120 degrees";
         if (creaseClusterSize < 0 || creaseClusterSize == 1) return "CreaseClusterSize must be 0 (off) or at least 2";
         if (creaseMinSplitSize < 0) return "CreaseMinSplitSize must not be negative";
+        if (!(creaseBlendScale > 0 && creaseBlendScale <= 1)) return "CreaseBlendScale must be above 0 and at most 1";
         if (targetCount < 0) return "TargetCount must not be negative";
         if (!(mergeWithin >= 1)) return "mergeWithin must be at least 1";
         if (!(maxErrorFraction >= 0 && maxErrorFraction < 1)) return "MaxError must be between 0 (off) and 1";
@@ -143,6 +148,7 @@ struct ResamplingStats
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
     double diagonal = 0;           ///< bounding-box diagonal of the usable points
+    int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     double meanAdaptiveNeighbors = 0;
@@ -465,6 +471,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
         result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
+        stats.surfelsNarrowedAtCreases = NarrowBlendsAroundCreases(graph, clusters, param.creaseBlendScale, result.surfels);
         if (param.fitOffsets) {
             detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
             recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels));

@@ -47,8 +47,8 @@ struct Surfel
     vcg::Point3f majorAxis;  ///< semi-axis vector, tangent
     vcg::Point3f minorAxis;  ///< semi-axis vector, tangent, orthogonal to majorAxis, not longer
     int memberCount = 0;
-    /// Factor in (0, 1] on the axes for blending only (the error bound narrows one-point surfels
-    /// at creases, surface_error_bound.h); the axes themselves keep covering the surface.
+    /// Factor in (0, 1] on the axes for blending only (surfels around creases, crease_blend.h; the
+    /// error bound's one-point surfels, surface_error_bound.h); the axes keep covering the surface.
     float blendScale = 1.f;
     /// How far FitSurfelOffsets moved `position` along `normal` (surfel_offset.h): position -
     /// fitOffset * normal is where the surfel stood on the sampled surface. 0: not moved.

@@ -1,0 +1,125 @@
+// NarrowBlendsAroundCreases and ResamplingParams::creaseBlendScale: the surfels around a crease blend
+// narrower, one-point clusters and smooth surfaces keep their blend, and the blended surface
+// the error metric projects on follows sharp edges more closely.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <vcg_ext/gaussphere/crease_blend.h>
+
+#include "pipeline_support.h"
+
+namespace {
+
+using namespace vcg::gaussphere;
+
+// Nine points in five clusters: point 1 is a crease point, with neighbours 3 (outside its cone
+// of normals) and 4 (a one-point cluster); point 7 is not, and its neighbour 5 keeps its blend.
+struct HandMadeCase
+{
+    NeighborGraph graph = gstest::MakeGraph({{1}, {4, 3}, {3}, {2}, {1}, {6}, {5}, {5}, {7}});
+    Clustering clusters;
+    std::vector<Surfel> surfels = std::vector<Surfel>(5);
+    HandMadeCase()
+    {
+        clusters.label = {0, 0, 1, 1, 2, 3, 3, 4, 4};
+        clusters.clusterCount = 5;
+        for (int l : clusters.label) ++surfels[l].memberCount;
+        graph.count[1] = 1; // neighbour 3 lies outside the cone: still a neighbour for the blend
+        graph.crease.assign(9, 0);
+        graph.crease[1] = 1;
+    }
+};
+
+TEST(CreaseBlend, NarrowsClustersHoldingACreasePointOrANeighbourOfOne)
+{
+    HandMadeCase c;
+    EXPECT_EQ(NarrowBlendsAroundCreases(c.graph, c.clusters, 0.7f, c.surfels), 2);
+    EXPECT_EQ(c.surfels[0].blendScale, 0.7f) << "holds the crease point";
+    EXPECT_EQ(c.surfels[1].blendScale, 0.7f) << "holds a neighbour of it";
+    EXPECT_EQ(c.surfels[2].blendScale, 1.f) << "a one-point cluster stands for the edge itself";
+    EXPECT_EQ(c.surfels[3].blendScale, 1.f) << "only a neighbour of a point that is no crease point";
+    EXPECT_EQ(c.surfels[4].blendScale, 1.f);
+}
+
+TEST(CreaseBlend, NothingNarrowsWithoutCreaseMarksOrAtScaleOne)
+{
+    HandMadeCase c;
+    EXPECT_EQ(NarrowBlendsAroundCreases(c.graph, c.clusters, 1.f, c.surfels), 0);
+    c.graph.crease.clear(); // no crease angle: the neighbour search marked nothing
+    EXPECT_EQ(NarrowBlendsAroundCreases(c.graph, c.clusters, 0.5f, c.surfels), 0);
+    for (const Surfel &s : c.surfels) EXPECT_EQ(s.blendScale, 1.f);
+}
+
+TEST(CreaseBlend, ScaleOutsideZeroToOneIsRejected)
+{
+    for (float bad : {0.f, -0.5f, 1.01f, std::numeric_limits<float>::quiet_NaN()}) {
+        ResamplingParams p;
+        p.creaseBlendScale = bad;
+        EXPECT_NE(p.Validate().find("CreaseBlendScale"), std::string::npos) << bad;
+    }
+    ResamplingParams p;
+    p.creaseBlendScale = 1.f;
+    EXPECT_EQ(p.Validate(), "");
+}
+
+// The cube's edges: surfels on and beside them narrowed, the faces' interiors and the one-point
+// clusters not; the blended surface then rounds the edges less.
+TEST(CreaseBlend, OnACubeTheEdgesComeOutSharper)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    const ResamplingResult narrowed = gstest::Resample(cube);
+    ResamplingParams wideParam;
+    wideParam.creaseBlendScale = 1.f;
+    const ResamplingResult wide = gstest::Resample(cube, wideParam);
+    ASSERT_EQ(narrowed.surfels.size(), wide.surfels.size()) << "the blend scale changes no cluster";
+
+    // Distance from a point to the nearest edge (the cube spans [-1, 1]; edge and corner points: 0).
+    auto toBoundary = [&](int i) {
+        if (cube.tag[i] >= 6) return 0.f;
+        float d = 2;
+        for (int a = 0; a < 3; ++a)
+            if (cube.normals[i][a] == 0) d = std::min(d, 1.f - std::abs(cube.points[i][a]));
+        return d;
+    };
+    const auto members = gstest::MembersOf(narrowed);
+    const float defaultScale = ResamplingParams().creaseBlendScale, spacing = 2.f / 24;
+    int narrowedCount = 0, interior = 0;
+    for (size_t c = 0; c < members.size(); ++c) {
+        const Surfel &s = narrowed.surfels[c];
+        float nearest = 2;
+        for (int i : members[c]) nearest = std::min(nearest, toBoundary(i));
+        EXPECT_TRUE(s.blendScale == 1.f || s.blendScale == defaultScale) << s.blendScale;
+        if (s.blendScale < 1) {
+            ++narrowedCount;
+            EXPECT_GT(s.memberCount, 1);
+            EXPECT_LT(nearest, 6 * spacing) << "surfel " << c << " is narrowed far from any edge";
+        } else {
+            EXPECT_TRUE(nearest > 2 * spacing || s.memberCount == 1) << "surfel " << c << " beside an edge is not narrowed";
+        }
+        if (nearest > 6 * spacing) ++interior;
+    }
+    EXPECT_GT(interior, 0) << "the test needs surfels inside the faces";
+    for (const Surfel &s : wide.surfels) EXPECT_EQ(s.blendScale, 1.f);
+    EXPECT_EQ(narrowedCount, narrowed.stats.surfelsNarrowedAtCreases);
+    EXPECT_EQ(wide.stats.surfelsNarrowedAtCreases, 0);
+    EXPECT_GT(narrowedCount, 0);
+
+    const gstest::Measured sharp = gstest::Measure(cube, narrowed), round = gstest::Measure(cube, wide);
+    EXPECT_LT(sharp.stats.normalizedDistance.rms, 0.97 * round.stats.normalizedDistance.rms);
+    EXPECT_LT(sharp.stats.normalizedDistance.max, round.stats.normalizedDistance.max);
+    std::printf("cube: %d of %zu surfels narrowed; D*RMS %.3e -> %.3e, D*max %.4f -> %.4f\n", narrowedCount,
+                narrowed.surfels.size(), round.stats.normalizedDistance.rms, sharp.stats.normalizedDistance.rms,
+                round.stats.normalizedDistance.max, sharp.stats.normalizedDistance.max);
+}
+
+TEST(CreaseBlend, ASmoothSurfaceKeepsEveryBlend)
+{
+    const ResamplingResult r = gstest::Resample(gstest::FibonacciSphere(4000));
+    EXPECT_EQ(r.stats.surfelsNarrowedAtCreases, 0);
+    for (const Surfel &s : r.surfels) EXPECT_EQ(s.blendScale, 1.f);
+}
+
+} // namespace
