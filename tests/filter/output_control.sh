@@ -59,7 +59,7 @@ PY
 # Around creases (the bunny's ears and base) the surfels blend narrower by default, and the log
 # says how many; the scale is saved (blend_scale at byte 56). CreaseBlendScale 1 turns it off,
 # with the same clusters.
-grep -q "surfel(s) around creases blend 0.70 times as wide" plain.surfel.log
+grep -q "surfel(s) around creases blend 0.65 times as wide" plain.surfel.log
 wide=$(resample "$bunny" wide.surfel "$(script_with CreaseBlendScale=1)")
 [ "$wide" = "$plain" ]
 if grep -q "around creases blend" wide.surfel.log; then exit 1; fi
@@ -70,6 +70,6 @@ def scales(path):
     body = data[data.index(b"end_header\n") + 11:]
     return [round(struct.unpack_from("<f", body, r + 56)[0], 6) for r in range(0, len(body), 68)]
 narrowed, wide = scales(sys.argv[1]), scales(sys.argv[2])
-print("blend scales around creases: %d of %d at 0.7" % (narrowed.count(0.7), len(narrowed)))
-assert set(narrowed) == {0.7, 1.0} and set(wide) == {1.0}
+print("blend scales around creases: %d of %d at 0.65" % (narrowed.count(0.65), len(narrowed)))
+assert set(narrowed) == {0.65, 1.0} and set(wide) == {1.0}
 PY

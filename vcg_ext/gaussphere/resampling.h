@@ -88,7 +88,7 @@ struct ResamplingParams
     double creaseAngle = 45;         ///< degrees: normals turned by more mark a crease (0 = no crease limits)
     int creaseClusterSize = 5;       ///< maxClusterSize of clusters at a crease (0 = off)
     int creaseMinSplitSize = 4;      ///< minSplitSize of clusters at a crease
-    float creaseBlendScale = 0.7f;   ///< blend width of the surfels around creases (crease_blend.h);
+    float creaseBlendScale = 0.65f;  ///< blend width of the surfels around creases (crease_blend.h);
                                      ///< in (0, 1], 1 = off; not with maxErrorFraction, which narrows its own
     double weightWidth = -1;         ///< h of the normal weights; < 0: 0.01 x bbox diagonal
     int maxIterations = 10;          ///< cap on normalization + rejoining rounds
