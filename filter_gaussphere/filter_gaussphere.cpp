@@ -96,7 +96,8 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "than one point holding a crease point or one of its neighbours; per-vertex attribute SurfelBlendScale): "
         "the surface the surfels blend into (the moving least squares surface the Surfel Approximation Error "
         "filter measures on) then follows each face closer to the edge instead of rounding it off. "
-        "The ellipses keep their size. 1 = off; with a Maximum error the bound narrows blends on its own terms."));
+        "The ellipses keep their size. 1 = off. With a Maximum error the bound is checked on the narrowed blend, "
+        "which meets it with fewer surfels on CAD parts."));
     par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
         "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
         "surfel normal, r being the distance to the cluster centroid. 0 means 1% of the bounding box "

@@ -89,7 +89,7 @@ struct ResamplingParams
     int creaseClusterSize = 5;       ///< maxClusterSize of clusters at a crease (0 = off)
     int creaseMinSplitSize = 4;      ///< minSplitSize of clusters at a crease
     float creaseBlendScale = 0.65f;  ///< blend width of the surfels around creases (crease_blend.h);
-                                     ///< in (0, 1], 1 = off; not with maxErrorFraction, which narrows its own
+                                     ///< in (0, 1], 1 = off
     double weightWidth = -1;         ///< h of the normal weights; < 0: 0.01 x bbox diagonal
     int maxIterations = 10;          ///< cap on normalization + rejoining rounds
     double convergenceFraction = 0.01; ///< stop when the count changes by less than this x N
@@ -451,6 +451,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
                            cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
                 },
                 [&](std::vector<Surfel> &surfels) {
+                    stats.surfelsNarrowedAtCreases = NarrowBlendsAroundCreases(graph, clusters, param.creaseBlendScale, surfels);
                     if (param.fitOffsets)
                         recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, surfels, bound));
                 });

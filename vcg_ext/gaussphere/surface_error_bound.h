@@ -62,8 +62,9 @@ struct SurfaceErrorBoundResult
 /// narrowed, or after maxRounds projections. `progress(r, f)` is
 /// called from the calling thread during projection round r (from 1) with the fraction f of
 /// points projected so far; when it returns false the refinement stops at once and the result
-/// has cancelled = true (its figures are then partial). `fitSurfels`, if given, adjusts each
-/// round's surfels before they are checked (the resampler's FitSurfelOffsets): the figures and
+/// has cancelled = true (its figures are then partial). `adjustSurfels`, if given, adjusts each
+/// round's surfels before they are checked (the resampler's NarrowBlendsAroundCreases and
+/// FitSurfelOffsets: blend scales of surfels of more than one member, positions): the figures and
 /// the bound are those of the adjusted surfels.
 /// \pre points and normals (unit) as given to the refiner; spacing as for GenerateSurfels;
 ///      maxDistance > 0; the points' bounding-box diagonal `diagonal` > 0.
@@ -75,7 +76,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
                                                         double maxDistance, double diagonal, int maxRounds,
                                                         ClusterRefiner &refiner, Clustering &clusters,
                                                         const std::function<bool(int, double)> &progress = nullptr,
-                                                        const std::function<void(std::vector<Surfel> &)> &fitSurfels = nullptr)
+                                                        const std::function<void(std::vector<Surfel> &)> &adjustSurfels = nullptr)
 {
     const vcg::tri::SurfelErrorParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
@@ -87,16 +88,18 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
     for (;;) {
         blendScale.resize(clusters.clusterCount, 1.f);
         result.surfels = GenerateSurfels(points, normals, spacing, clusters, narrowedParam);
-        if (fitSurfels) fitSurfels(result.surfels);
+        if (adjustSurfels) adjustSurfels(result.surfels);
         std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
+        std::vector<float> surfelBlendScale;
         for (const Surfel &s : result.surfels) {
             centers.push_back(s.position);
             surfelNormals.push_back(s.normal);
             major.push_back(s.majorAxis);
             minor.push_back(s.minorAxis);
+            surfelBlendScale.push_back(s.blendScale);
         }
         const vcg::tri::SurfelSurface surface =
-            vcg::tri::MakeEllipseSurfelSurface(centers, surfelNormals, major, minor, metric, &blendScale);
+            vcg::tri::MakeEllipseSurfelSurface(centers, surfelNormals, major, minor, metric, &surfelBlendScale);
         ++result.rounds;
         // Clusters to split: those of the surfels nearest to the projection of a point beyond
         // the bound (the ones the blend draws from, and a few facing away), and the point's own.
