@@ -96,7 +96,8 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "than one point holding a crease point or one of its neighbours; per-vertex attribute SurfelBlendScale): "
         "the surface the surfels blend into (the moving least squares surface the Surfel Approximation Error "
         "filter measures on) then follows each face closer to the edge instead of rounding it off. "
-        "The ellipses keep their size. 1 = off. With a Maximum error the bound is checked on the narrowed blend, "
+        "The ellipses keep their size, and FitOffsets leaves these surfels in place. 1 = off; needs a Crease "
+        "angle. With a Maximum error the bound is checked on the narrowed blend, "
         "which meets it with fewer surfels on CAD parts."));
     par.addParam(RichAbsPerc("WeightWidth", 0.01f * diag, 0.0f, diag, "Normal weight width (h)",
         "Width h of the Gaussian weight exp(-r^2/h^2) used to blend the normals of a cluster into the "
@@ -128,7 +129,7 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "squares surface the Surfel Approximation Error filter measures on) passes through the input points on average, "
         "instead of leaving the surfel at its cluster's centroid, which lies inside curved surfaces. Lowers "
         "the distance error of smooth scans by a quarter to a third at little cost; clusters at sharp creases "
-        "keep their place. Each move is kept in the per-vertex attribute <i>SurfelFitOffset</i> (and in .surfel "
+        "keep their place, and so do the surfels whose blend is narrowed around them. Each move is kept in the per-vertex attribute <i>SurfelFitOffset</i> (and in .surfel "
         "files), from which the Ellipse Splatting render mode draws each splat at its unfitted position, on the "
         "sampled surface: splats blend shading, not positions, and fitted ones would swell the silhouettes. "
         "With a Maximum error the surfels are fitted in every round of its check, so the bound holds for them."));

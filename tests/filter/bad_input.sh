@@ -32,6 +32,7 @@ expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxClusterSize=-1)" "MaxCl
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseAngle"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseClusterSize=-2)" "CreaseClusterSize"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=0)" "CreaseBlendScale"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=1.5)" "CreaseBlendScale"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply
@@ -69,10 +70,10 @@ printf '0 0 0 0 0 1\n0.1 0 0 0 0 1\n0 0.1 0 0 0 1\n0.1 0.1 0 0 0 1\n0.05 0.05 0 
 echo "ok: fewer points than k"
 
 # The command-line resampler: the same inputs give one clear line and status 1, and leave no file.
-# gsresample_fails IN OUT MESSAGE
+# gsresample_fails IN OUT MESSAGE [OPTION VALUE...]
 gsresample_fails() {
   local status=0
-  "$GSRESAMPLE" "$1" "$2" >gsresample.log 2>&1 || status=$?
+  "$GSRESAMPLE" "$1" "$2" "${@:4}" >gsresample.log 2>&1 || status=$?
   if [ "$status" != 1 ]; then echo "FAILED: gsresample $1 $2 exited $status, expected 1" >&2; cat gsresample.log >&2; exit 1; fi
   grep -q "$3" gsresample.log || { echo "FAILED: no '$3' from gsresample $1" >&2; cat gsresample.log >&2; exit 1; }
   if [ -e "$2" ] || [ -e "$2.part" ]; then echo "FAILED: gsresample left $2 behind" >&2; exit 1; fi
@@ -81,4 +82,5 @@ gsresample_fails() {
 gsresample_fails missing.ply out_missing.surfel "cannot read missing.ply"
 gsresample_fails no_normals.ply out_no_normals.surfel "no per-vertex normals"
 gsresample_fails one.ply out_one.surfel "at least 2"
+gsresample_fails "$SAMPLE_DIR/fandisk.ply" out_blend.surfel "CreaseBlendScale must be above 0" --crease-blend 0
 gsresample_fails "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"
