@@ -19,14 +19,12 @@ grep -q "split(s) for the error bound" bounded.surfel.log
 # leaves points beyond it; narrowing the one-point surfels there meets it, and the log says so.
 grep -q "[1-9][0-9]* halving(s) of one-point surfels' blend scales" bounded.surfel.log
 grep -q "error bound met: every point within" bounded.surfel.log
-# The narrowed blend is saved (.surfel version 3, blend_scale at byte 56 of each 68-byte record):
+# The narrowed blend is saved (.surfel version 3, blend_scale in each record):
 # some surfels below 1, none below 1/8.
-python3 - bounded.surfel <<'PY'
-import struct, sys
-data = open(sys.argv[1], "rb").read()
-assert b"comment gaussphere-surfel 3\n" in data and b"property float blend_scale\n" in data
-body = data[data.index(b"end_header\n") + 11:]
-scales = [struct.unpack_from("<f", body, r + 56)[0] for r in range(0, len(body), 68)]
+PYTHONPATH="$FILTER_TESTS_DIR" python3 - bounded.surfel <<'PY'
+import sys
+from surfel_records import records, BLEND_SCALE
+scales = [r[BLEND_SCALE] for r in records(sys.argv[1])]
 print("blend scales: %d below 1, smallest %g" % (sum(s < 1 for s in scales), min(scales)))
 assert any(s < 1 for s in scales) and min(scales) >= 0.125 and max(scales) == 1
 PY
@@ -36,39 +34,35 @@ grep -q " 0 halving(s) of one-point surfels' blend scales" loose.surfel.log
 echo "bunny: $loose surfels with MaxError 0.01"
 # FitOffsets (on by default) moves surfels along their normals onto the blended surface, and
 # says so; off, the surfels stay at their clusters' centroids: same count, same ellipses. The
-# move is saved (fit_offset at byte 60): moved back by it, the fitted surfels are the centroids.
+# move is saved (fit_offset in each record): moved back by it, the fitted surfels are the centroids.
 grep -q "surfel(s) fitted to the blended surface" plain.surfel.log
 centroids=$(resample "$bunny" centroids.surfel "$(script_with FitOffsets=false)")
 [ "$centroids" = "$plain" ]
 if grep -q "fitted to the blended surface" centroids.surfel.log; then exit 1; fi
-python3 - plain.surfel centroids.surfel <<'PY'
-import struct, sys
-def records(path):
-    data = open(path, "rb").read()
-    body = data[data.index(b"end_header\n") + 11:]
-    return [struct.unpack_from("<16f", body, r) for r in range(0, len(body), 68)]
+PYTHONPATH="$FILTER_TESTS_DIR" python3 - plain.surfel centroids.surfel <<'PY'
+import sys
+from surfel_records import records, FIT_OFFSET
 fitted, plain = records(sys.argv[1]), records(sys.argv[2])
 moves = [sum((a[k] - b[k]) ** 2 for k in range(3)) ** 0.5 for a, b in zip(fitted, plain)]
 print("fitted surfels: %d of %d moved, longest move %g" % (sum(m > 0 for m in moves), len(moves), max(moves)))
 assert sum(m > 0 for m in moves) > len(moves) // 2 and max(moves) < 0.01   # the bunny is ~0.25 across
 assert all(a[3:13] == b[3:13] for a, b in zip(fitted, plain))               # normals, radius, axes unchanged
-unfitted = max(sum((a[k] - a[15] * a[3 + k] - b[k]) ** 2 for k in range(3)) ** 0.5 for a, b in zip(fitted, plain))
+unfitted = max(sum((a[k] - a[FIT_OFFSET] * a[3 + k] - b[k]) ** 2 for k in range(3)) ** 0.5 for a, b in zip(fitted, plain))
 print("fitted surfels moved back by their fit offsets: at most %g from the centroids" % unfitted)
-assert unfitted < 1e-6 and all(b[15] == 0 for b in plain)
+assert unfitted < 1e-6 and all(b[FIT_OFFSET] == 0 for b in plain)
 PY
 # Around creases (the bunny's ears and base) the surfels blend narrower by default, and the log
-# says how many; the scale is saved (blend_scale at byte 56). CreaseBlendScale 1 turns it off,
+# says how many; the scale is saved (blend_scale). CreaseBlendScale 1 turns it off,
 # with the same clusters.
 grep -q "surfel(s) around creases blend 0.65 times as wide" plain.surfel.log
 wide=$(resample "$bunny" wide.surfel "$(script_with CreaseBlendScale=1)")
 [ "$wide" = "$plain" ]
 if grep -q "around creases blend" wide.surfel.log; then exit 1; fi
-python3 - plain.surfel wide.surfel <<'PY'
-import struct, sys
+PYTHONPATH="$FILTER_TESTS_DIR" python3 - plain.surfel wide.surfel <<'PY'
+import sys
+from surfel_records import records, BLEND_SCALE
 def scales(path):
-    data = open(path, "rb").read()
-    body = data[data.index(b"end_header\n") + 11:]
-    return [round(struct.unpack_from("<f", body, r + 56)[0], 6) for r in range(0, len(body), 68)]
+    return [round(r[BLEND_SCALE], 6) for r in records(path)]
 narrowed, wide = scales(sys.argv[1]), scales(sys.argv[2])
 print("blend scales around creases: %d of %d at 0.65" % (narrowed.count(0.65), len(narrowed)))
 assert set(narrowed) == {0.65, 1.0} and set(wide) == {1.0}
