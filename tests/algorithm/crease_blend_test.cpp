@@ -78,21 +78,13 @@ TEST(CreaseBlend, OnACubeTheEdgesComeOutSharper)
     const ResamplingResult wide = gstest::Resample(cube, wideParam);
     ASSERT_EQ(narrowed.surfels.size(), wide.surfels.size()) << "the blend scale changes no cluster";
 
-    // Distance from a point to the nearest edge (the cube spans [-1, 1]; edge and corner points: 0).
-    auto toBoundary = [&](int i) {
-        if (cube.tag[i] >= 6) return 0.f;
-        float d = 2;
-        for (int a = 0; a < 3; ++a)
-            if (cube.normals[i][a] == 0) d = std::min(d, 1.f - std::abs(cube.points[i][a]));
-        return d;
-    };
     const auto members = gstest::MembersOf(narrowed);
     const float defaultScale = ResamplingParams().creaseBlendScale, spacing = 2.f / 24;
     int narrowedCount = 0, interior = 0;
     for (size_t c = 0; c < members.size(); ++c) {
         const Surfel &s = narrowed.surfels[c];
         float nearest = 2;
-        for (int i : members[c]) nearest = std::min(nearest, toBoundary(i));
+        for (int i : members[c]) nearest = std::min(nearest, gstest::DistanceToCubeEdge(cube, i));
         EXPECT_TRUE(s.blendScale == 1.f || s.blendScale == defaultScale) << s.blendScale;
         if (s.blendScale < 1) {
             ++narrowedCount;

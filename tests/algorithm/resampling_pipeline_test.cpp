@@ -57,14 +57,6 @@ TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
     const auto members = gstest::MembersOf(Result());
     const ResamplingParams defaults;
     const float spacing = 2.f / 24;
-    // Distance from a face point to its face's boundary: the cube spans [-1, 1].
-    auto toBoundary = [&](int i) {
-        const P3 &p = Cube().points[i], &n = Cube().normals[i];
-        float d = 2;
-        for (int a = 0; a < 3; ++a)
-            if (n[a] == 0) d = std::min(d, 1.f - std::abs(p[a]));
-        return d;
-    };
     std::vector<int> perFace(6, 0);
     int facePoints = 0, interiorClusters = 0, interiorPoints = 0;
     for (size_t c = 0; c < members.size(); ++c) {
@@ -73,7 +65,7 @@ TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
         ++perFace[tag];
         facePoints += int(members[c].size());
         float nearest = 2;
-        for (int i : members[c]) nearest = std::min(nearest, toBoundary(i));
+        for (int i : members[c]) nearest = std::min(nearest, gstest::DistanceToCubeEdge(Cube(), i));
         if (nearest < 1.5f * spacing)
             EXPECT_LE(int(members[c].size()), defaults.creaseClusterSize) << "cluster " << c << " touches an edge";
         if (nearest > 3.5f * spacing) {

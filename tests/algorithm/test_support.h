@@ -4,6 +4,7 @@
 #ifndef GAUSSPHERE_TESTS_ALGORITHM_TEST_SUPPORT_H
 #define GAUSSPHERE_TESTS_ALGORITHM_TEST_SUPPORT_H
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -93,6 +94,17 @@ inline PointSet CubeSurface(int cells, bool withEdges)
                 else if (withEdges) s.Add(p, n / n.Norm(), onBoundary == 2 ? 6 : 7);
             }
     return s;
+}
+
+/// Distance from point i of CubeSurface() to the nearest edge of the cube: from a face point to
+/// its face's boundary, 0 for the edge and corner points (tag 6 and 7).
+inline float DistanceToCubeEdge(const PointSet &cube, int i)
+{
+    if (cube.tag[i] >= 6) return 0.f;
+    float d = 2;
+    for (int a = 0; a < 3; ++a)
+        if (cube.normals[i][a] == 0) d = std::min(d, 1.f - std::abs(cube.points[i][a]));
+    return d;
 }
 
 /// Fills `m` (vcg meshes cannot be copied or returned) with one vertex per point.

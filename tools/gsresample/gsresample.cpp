@@ -2,7 +2,7 @@
 //
 //   gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]
 //              [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]
-//              [--crease-min-split S] [--iterations I] [--base octahedron|icosahedron]
+//              [--crease-min-split S] [--crease-blend F] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
 //              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
 //
