@@ -4,7 +4,7 @@
 //              [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]
 //              [--crease-min-split S] [--crease-blend F] [--iterations I] [--base octahedron|icosahedron]
 //              [--reference seed|current] [--order dfs|bfs]
-//              [--target COUNT] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
+//              [--target COUNT] [--exchanges N] [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]
 //
 // Writes the surfels as a `.surfel` file (docs/surfel_format.md: ellipse axes, fit offsets and
 // blend scales included) when OUTPUT ends in .surfel, otherwise as a PLY point set with normals,
@@ -29,7 +29,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "usage: %s INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]"
                              " [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M] [--crease-min-split S] [--crease-blend F]"
                              " [--iterations I] [--base octahedron|icosahedron]"
-                             " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--max-error FRACTION] [--fit-offsets 0|1]\n", argv[0]);
+                             " [--reference seed|current] [--order dfs|bfs] [--target COUNT] [--exchanges N] [--max-error FRACTION] [--fit-offsets 0|1]\n", argv[0]);
         return 2;
     }
     ResamplingParams param;
@@ -49,6 +49,7 @@ int main(int argc, char **argv)
         else if (key == "--weight-width") param.weightWidth = std::stod(value);
         else if (key == "--convergence") param.convergenceFraction = std::stod(value);
         else if (key == "--target") param.targetCount = std::stoi(value);
+        else if (key == "--exchanges") param.maxErrorExchanges = std::stoi(value);
         else if (key == "--max-error") param.maxErrorFraction = std::stod(value);
         else if (key == "--fit-offsets") param.fitOffsets = value != "0" && value != "false" && value != "off";
         else if (key == "--base") param.base = value == "icosahedron" ? BasePolyhedron::Icosahedron : BasePolyhedron::Octahedron;
@@ -73,12 +74,13 @@ int main(int argc, char **argv)
         WriteSurfels(r.surfels, out);
         const ResamplingStats &s = r.stats;
         std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
-                    "(%d tried) splits %d+%d+%d merges %d crease-narrowed %d halvings %d above-bound %d (max %.5f) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
-                    "refinement %.3f surfels %.3f)\n",
+                    "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.5f -> %.5f) crease-narrowed %d halvings %d above-bound %d (max %.5f) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+                    "refinement %.3f surfels %.3f exchanges %.3f)\n",
                     s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
                     s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.normalErrorMax, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
-                    s.splitsForSurfaceBound, s.splitsForTarget, s.mergesForTarget, s.surfelsNarrowedAtCreases, s.narrowingsForSurfaceBound, s.pointsAboveErrorBound, s.surfaceErrorMax, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
-                    s.secondsNormalization, s.secondsRefinement, s.secondsSurfels);
+                    s.splitsForSurfaceBound, s.splitsForTarget, s.mergesForTarget, s.exchangesForMaxError, s.exchangeTrials,
+                    s.exchangeMaxBefore, s.exchangeMaxAfter, s.surfelsNarrowedAtCreases, s.narrowingsForSurfaceBound, s.pointsAboveErrorBound, s.surfaceErrorMax, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
+                    s.secondsNormalization, s.secondsRefinement, s.secondsSurfels, s.secondsExchanges);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

@@ -41,6 +41,22 @@
 namespace vcg {
 namespace gaussphere {
 
+/// Partitions the members [first, last) of one cluster in two through their centroid, across
+/// the tangent direction along which their normals vary most (file header). Returns where the
+/// second part starts, or null if every member projects to the same side along each candidate
+/// direction (u, v, then the normal): coincident points.
+inline int *SplitMembers(const PointArray &points, const PointArray &normals, int *first, int *last, double invH2)
+{
+    const ClusterFrame f = ComputeClusterFrame(points, normals, first, last, invH2);
+    for (const Eigen::Vector3d &dir : {f.u, f.v, f.normal}) {
+        int *mid = std::partition(first, last, [&](int i) {
+            return (detail::ToEigen(points[i]) - f.centroid).dot(dir) <= 0;
+        });
+        if (mid != first && mid != last) return mid;
+    }
+    return nullptr;
+}
+
 class ClusterRefiner
 {
 public:
@@ -101,26 +117,20 @@ public:
 
     int Size(int c) const { return range_[c].second - range_[c].first; }
 
-    /// Splits cluster c in two; returns the new cluster's index, or -1 if every member
-    /// projects to the same side along each candidate direction (u, v, then the normal).
+    /// Splits cluster c in two (SplitMembers); returns the new cluster's index, or -1 if it
+    /// cannot be split.
     int Split(int c)
     {
-        const ClusterFrame f = ComputeClusterFrame(points_, normals_, Begin(c), End(c), invH2_);
-        for (const Eigen::Vector3d &dir : {f.u, f.v, f.normal}) {
-            int *first = index_.data() + range_[c].first, *last = index_.data() + range_[c].second;
-            int *mid = std::partition(first, last, [&](int i) {
-                return (detail::ToEigen(points_[i]) - f.centroid).dot(dir) <= 0;
-            });
-            if (mid == first || mid == last) continue;
-            const int added = Count();
-            const int split = int(mid - index_.data());
-            range_.push_back({split, range_[c].second});
-            range_[c].second = split;
-            for (const int *i = Begin(added); i != End(added); ++i) clusters_.label[*i] = added;
-            clusters_.clusterCount = Count();
-            return added;
-        }
-        return -1;
+        int *first = index_.data() + range_[c].first, *last = index_.data() + range_[c].second;
+        int *mid = SplitMembers(points_, normals_, first, last, invH2_);
+        if (!mid) return -1;
+        const int added = Count();
+        const int split = int(mid - index_.data());
+        range_.push_back({split, range_[c].second});
+        range_[c].second = split;
+        for (const int *i = Begin(added); i != End(added); ++i) clusters_.label[*i] = added;
+        clusters_.clusterCount = Count();
+        return added;
     }
 
 private:
@@ -161,25 +171,61 @@ private:
 constexpr double kMergePlaneWeight = 16.0;
 constexpr double kMergeSpreadWeight = 0.1;
 
-/// Merges neighbouring clusters, cheapest first, until `target` remain (or no two
-/// clusters are linked by `graph`, using every neighbour found, not only the cone).
-/// Returns the number of merges; clusters are compacted afterwards.
-inline int MergeToCount(const PointArray &points, const PointArray &normals,
-                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters)
+/// The cost of merging two clusters (file header), from per-cluster sums that give a merged
+/// cluster's errors in O(1). Positions are taken relative to the centroid of all points, which
+/// keeps the second moments of a model far from the origin from losing the clusters' spread to
+/// cancellation.
+class MergeCostModel
 {
-    const int count = clusters.clusterCount;
-    if (target >= count) return 0;
-    // Sums that give a merged cluster's errors in O(1). Positions are taken relative to the
-    // centroid of all points, which keeps the second moments of a model far from the origin
-    // from losing the clusters' spread to cancellation.
-    struct Cluster
+public:
+    /// \pre clusters' labels in [-1, clusterCount); weightWidth = h of the surfel normal weights.
+    MergeCostModel(const PointArray &points, const PointArray &normals, const Clustering &clusters, double weightWidth)
+        : sums_(clusters.clusterCount), invH2_(1.0 / (weightWidth * weightWidth))
+    {
+        Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+        double clustered = 0;
+        for (size_t i = 0; i < clusters.label.size(); ++i)
+            if (clusters.label[i] >= 0) { origin += detail::ToEigen(points[i]); ++clustered; }
+        origin /= std::max(1.0, clustered);
+        for (size_t i = 0; i < clusters.label.size(); ++i) {
+            const int l = clusters.label[i];
+            if (l < 0) continue;
+            const Eigen::Vector3d p = detail::ToEigen(points[i]) - origin;
+            Sums &s = sums_[l];
+            s.size += 1;
+            s.normalSum += detail::ToEigen(normals[i]);
+            s.positionSum += p;
+            s.moment += p * p.transpose();
+        }
+    }
+
+    /// What merging clusters a and b adds to the weighted squared errors.
+    double Cost(int a, int b) const
+    {
+        const Sums &A = sums_[a], &B = sums_[b];
+        Sums merged = A;
+        merged.Add(B);
+        const double ward = A.size * B.size / (A.size + B.size);
+        // May be negative: each part's error is taken along its own mean normal, its surfel's,
+        // and a merged normal that fits both parts better lowers the surfels' height error.
+        // Clamping it at 0 was measured: Delta*max lower than the hierarchy's on 2 models fewer.
+        const double addedHeight = merged.PlaneError() - A.PlaneError() - B.PlaneError();
+        return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
+                       kMergeSpreadWeight * (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2_) +
+               kMergePlaneWeight * addedHeight * invH2_;
+    }
+
+    /// Cluster `keep` takes over the members of `gone`.
+    void Merge(int keep, int gone) { sums_[keep].Add(sums_[gone]); }
+
+private:
+    struct Sums
     {
         double size = 0;
         Eigen::Vector3d normalSum = Eigen::Vector3d::Zero(), positionSum = Eigen::Vector3d::Zero();
         Eigen::Matrix3d moment = Eigen::Matrix3d::Zero(); // sum of p p^T
-        int version = 0;
 
-        void Add(const Cluster &o)
+        void Add(const Sums &o)
         {
             size += o.size;
             normalSum += o.normalSum;
@@ -197,23 +243,15 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
             return std::max(0.0, n.dot(scatter * n));
         }
     };
-    std::vector<Cluster> c(count);
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-    double clustered = 0;
-    for (size_t i = 0; i < clusters.label.size(); ++i)
-        if (clusters.label[i] >= 0) { origin += detail::ToEigen(points[i]); ++clustered; }
-    origin /= clustered;
-    for (size_t i = 0; i < clusters.label.size(); ++i) {
-        const int l = clusters.label[i];
-        if (l < 0) continue;
-        const Eigen::Vector3d p = detail::ToEigen(points[i]) - origin;
-        c[l].size += 1;
-        c[l].normalSum += detail::ToEigen(normals[i]);
-        c[l].positionSum += p;
-        c[l].moment += p * p.transpose();
-    }
-    // Cluster adjacency, deduplicated, from the k-NN graph.
-    std::vector<std::vector<int>> adjacent(count);
+    std::vector<Sums> sums_;
+    double invH2_;
+};
+
+/// Per cluster, the other clusters linked to it by `graph` (every neighbour found, not only the
+/// cone), sorted, without repeats.
+inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph, const Clustering &clusters)
+{
+    std::vector<std::vector<int>> adjacent(clusters.clusterCount);
     for (int i = 0; i < graph.Size(); ++i) {
         const int a = clusters.label[i];
         if (a < 0) continue;
@@ -224,44 +262,44 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
         }
     }
     for (auto &list : adjacent) SortUnique(list);
+    return adjacent;
+}
+
+/// Merges neighbouring clusters, cheapest first (MergeCostModel), until `target` remain (or no
+/// two clusters are linked by `graph`, using every neighbour found, not only the cone).
+/// Returns the number of merges; clusters are compacted afterwards.
+inline int MergeToCount(const PointArray &points, const PointArray &normals,
+                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters)
+{
+    const int count = clusters.clusterCount;
+    if (target >= count) return 0;
+    MergeCostModel model(points, normals, clusters, weightWidth);
+    std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
+    std::vector<int> version(count, 0);
     std::vector<int> parent(count);
     for (int k = 0; k < count; ++k) parent[k] = k;
     auto root = [&](int k) {
         while (parent[k] != k) k = parent[k] = parent[parent[k]];
         return k;
     };
-    const double invH2 = 1.0 / (weightWidth * weightWidth);
-    auto cost = [&](int a, int b) {
-        const Cluster &A = c[a], &B = c[b];
-        Cluster merged = A;
-        merged.Add(B);
-        const double ward = A.size * B.size / (A.size + B.size);
-        // May be negative: each part's error is taken along its own mean normal, its surfel's,
-        // and a merged normal that fits both parts better lowers the surfels' height error.
-        // Clamping it at 0 was measured: Delta*max lower than the hierarchy's on 2 models fewer.
-        const double addedHeight = merged.PlaneError() - A.PlaneError() - B.PlaneError();
-        return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
-                       kMergeSpreadWeight * (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2) +
-               kMergePlaneWeight * addedHeight * invH2;
-    };
     struct Candidate { double cost; int a, b, versionA, versionB; bool operator<(const Candidate &o) const { return cost > o.cost || (cost == o.cost && (a > o.a || (a == o.a && b > o.b))); } };
     std::priority_queue<Candidate> queue;
     for (int a = 0; a < count; ++a)
         for (int b : adjacent[a])
-            if (a < b) queue.push({cost(a, b), a, b, 0, 0});
+            if (a < b) queue.push({model.Cost(a, b), a, b, 0, 0});
     int remaining = count, merges = 0;
     while (remaining > target && !queue.empty()) {
         const Candidate top = queue.top();
         queue.pop();
-        if (root(top.a) != top.a || root(top.b) != top.b || c[top.a].version != top.versionA ||
-            c[top.b].version != top.versionB)
+        if (root(top.a) != top.a || root(top.b) != top.b || version[top.a] != top.versionA ||
+            version[top.b] != top.versionB)
             continue; // stale: one side merged since
         // Merge the smaller adjacency list into the larger one.
         int keep = top.a, gone = top.b;
         if (adjacent[keep].size() < adjacent[gone].size()) std::swap(keep, gone);
         parent[gone] = keep;
-        c[keep].Add(c[gone]);
-        ++c[keep].version;
+        model.Merge(keep, gone);
+        ++version[keep];
         std::vector<int> merged;
         for (int x : adjacent[keep]) merged.push_back(root(x));
         for (int x : adjacent[gone]) merged.push_back(root(x));
@@ -271,7 +309,7 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
         std::vector<int>().swap(adjacent[gone]);
         for (int x : adjacent[keep]) {
             const int a = std::min(keep, x), b = std::max(keep, x);
-            queue.push({cost(a, b), a, b, c[a].version, c[b].version});
+            queue.push({model.Cost(a, b), a, b, version[a], version[b]});
         }
         --remaining;
         ++merges;

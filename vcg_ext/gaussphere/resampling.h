@@ -65,6 +65,7 @@
 #include "flat_vector.h"
 #include "gaussian_sphere.h"
 #include "index_propagation.h"
+#include "max_error_exchange.h"
 #include "point_grid.h"
 #include "singleton_rejoining.h"
 #include "surface_error_bound.h"
@@ -96,6 +97,9 @@ struct ResamplingParams
     double coverageMargin = 0.75;    ///< ellipse growth, in local sample spacings
     int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
     double mergeWithin = 1.15;       ///< targetCount: merge down from a level giving at most this x the target
+    int maxErrorExchanges = 16;      ///< targetCount: exchanges of clusters that lower the largest error
+                                     ///< at the same count (max_error_exchange.h; 0 = off); not with
+                                     ///< maxErrorFraction, whose bound sets the count
     bool fitOffsets = true;          ///< surfels moved along their normals to fit the blended surface
                                      ///< (surfel_offset.h; with maxErrorFraction, in each round of
                                      ///< its check, so that the bound holds for the moved surfels)
@@ -121,6 +125,7 @@ struct ResamplingParams
         if (!(creaseBlendScale > 0 && creaseBlendScale <= 1)) return "CreaseBlendScale must be above 0 and at most 1";
         if (targetCount < 0) return "TargetCount must not be negative";
         if (!(mergeWithin >= 1)) return "mergeWithin must be at least 1";
+        if (maxErrorExchanges < 0 || maxErrorExchanges > 100000) return "MaxErrorExchanges must be between 0 (off) and 100000";
         if (!(maxErrorFraction >= 0 && maxErrorFraction < 1)) return "MaxError must be between 0 (off) and 1";
         return std::string();
     }
@@ -151,16 +156,21 @@ struct ResamplingStats
     int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
+    int exchangesForMaxError = 0;  ///< cluster exchanges kept at targetCount (maxErrorExchanges)
+    int exchangeTrials = 0;        ///< ... surfel sets measured for them
+    double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
+                                                        ///< surface before and after, over `diagonal`
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
     double secondsNeighbors = 0, secondsPropagation = 0, secondsNormalization = 0, secondsRefinement = 0,
-           secondsSurfels = 0;
+           secondsSurfels = 0, secondsExchanges = 0;
     /// The round cap, not a lack of clusters left to split, left points beyond the bound.
     bool SurfaceBoundCapped() const { return pointsAboveErrorBound > 0 && surfaceBoundRounds >= kSurfaceBoundRounds; }
     double TotalSeconds() const
     {
-        return secondsNeighbors + secondsPropagation + secondsNormalization + secondsRefinement + secondsSurfels;
+        return secondsNeighbors + secondsPropagation + secondsNormalization + secondsRefinement + secondsSurfels +
+               secondsExchanges;
     }
 };
 
@@ -471,11 +481,37 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
-        result.surfels = GenerateSurfels(points, normals, graph.spacing, clusters, surfelParam);
-        stats.surfelsNarrowedAtCreases = NarrowBlendsAroundCreases(graph, clusters, param.creaseBlendScale, result.surfels);
-        if (param.fitOffsets) {
-            detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
-            recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, result.surfels));
+        auto makeSurfels = [&](const Clustering &c) {
+            std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, c, surfelParam);
+            NarrowBlendsAroundCreases(graph, c, param.creaseBlendScale, surfels);
+            if (param.fitOffsets) FitSurfelOffsets(points, normals, graph, c, normalization.creasePoints, surfels);
+            return surfels;
+        };
+        if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
+            MaxErrorExchangeParams exchangeParam;
+            exchangeParam.maxRounds = param.maxErrorExchanges;
+            const MaxErrorExchangeResult exchange = ExchangeForMaxError(
+                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, makeSurfels, result.surfels,
+                [cb, &param](int round) {
+                    return cb == nullptr ||
+                           cb(90 + 9 * round / param.maxErrorExchanges, "Gaussian sphere resampling: exchanges for the largest error");
+                });
+            if (exchange.cancelled) throw ResamplingCancelled();
+            stats.exchangesForMaxError = exchange.exchanges;
+            stats.exchangeTrials = exchange.trials;
+            stats.exchangeMaxBefore = stats.diagonal > 0 ? exchange.maxBefore / stats.diagonal : 0.0;
+            stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
+            stats.secondsExchanges = timer.Lap();
+        } else {
+            result.surfels = makeSurfels(clusters);
+        }
+        // Read off the surfels: the exchange made many sets, the figures describe the kept one.
+        stats.surfelsNarrowedAtCreases = 0;
+        for (const Surfel &s : result.surfels) {
+            stats.surfelsNarrowedAtCreases += s.blendScale < 1;
+            stats.surfelsFitted += s.fitOffset != 0;
+            if (stats.diagonal > 0)
+                stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / stats.diagonal);
         }
     }
     FlatVector<double> normalError(n);

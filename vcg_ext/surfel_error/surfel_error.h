@@ -269,14 +269,28 @@ public:
     /// Projects q; `tolerance` is an absolute step length. `side` (unit, or zero for none) picks
     /// the sheet on thin parts: only surfels with n_i · side > 0 are blended, unless none of the
     /// k nearest is, in which case the side of the heaviest surfel is used.
+    /// `reach`, if given, receives a distance from q beyond which no surfel took part in the
+    /// projection: adding, removing or changing only surfels whose centres lie farther than
+    /// that from q leaves its result unchanged (infinite when fewer than k surfels exist).
     Projection Project(const Point3d& q, const Point3d& side, int maxIterations, double tolerance,
-                       Scratch& scratch) const
+                       Scratch& scratch, double* reach = nullptr) const
     {
         Projection result;
         result.foot = q;
         result.converged = false;
+        if (reach) *reach = 0;
         for (int step = 0; step < maxIterations && !result.converged; ++step) {
             tree_.Nearest(result.foot, neighborCount_, scratch.queue);
+            if (reach) {
+                // The k-th nearest centre bounds this step's neighbourhood: a centre farther than
+                // that from the foot cannot enter it. The tree works in floats: a margin of 1e-6
+                // of the coordinates' magnitude covers their rounding.
+                const double kth = scratch.queue.getNofElements() < neighborCount_
+                                       ? std::numeric_limits<double>::infinity()
+                                       : std::sqrt(double(scratch.queue.getTopWeight()));
+                const double stepReach = (result.foot - q).Norm() + kth;
+                *reach = std::max(*reach, stepReach + 1e-6 * (stepReach + q.Norm()));
+            }
             if (step == 0)
                 result.nearestSurfel = NearestInQueue(scratch.queue);
             Point3d average;
