@@ -33,6 +33,7 @@ expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseA
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseClusterSize=-2)" "CreaseClusterSize"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=0)" "CreaseBlendScale"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=1.5)" "CreaseBlendScale"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxErrorExchanges=-1)" "MaxErrorExchanges"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply
@@ -83,4 +84,5 @@ gsresample_fails missing.ply out_missing.surfel "cannot read missing.ply"
 gsresample_fails no_normals.ply out_no_normals.surfel "no per-vertex normals"
 gsresample_fails one.ply out_one.surfel "at least 2"
 gsresample_fails "$SAMPLE_DIR/fandisk.ply" out_blend.surfel "CreaseBlendScale must be above 0" --crease-blend 0
+gsresample_fails "$SAMPLE_DIR/fandisk.ply" out_exchanges.surfel "MaxErrorExchanges must be between 0" --target 100 --exchanges -3
 gsresample_fails "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"

@@ -10,6 +10,20 @@ echo "bunny at 10%: $count surfels"
 count=$(resample "$bunny" exact.surfel "$(script_with TargetCount=1234)")
 [ "$count" = 1234 ]
 "$SURFEL_CHECK" exact.surfel --count 1234 --require-ellipses --quality-sum 34834
+# At a target size, exchanges of clusters lower the largest distance to the blended surface
+# (MaxErrorExchanges, 16 in the script); the log gives it before and after. 0 turns them off:
+# the same count, no exchange logged.
+PYTHONPATH="$FILTER_TESTS_DIR" python3 - ten.surfel.log <<'PY'
+import re, sys
+m = re.search(r"(\d+) exchange\(s\) of clusters kept of (\d+) tried, largest distance to the blended surface "
+              r"([0-9.]+) -> ([0-9.]+) x diagonal", open(sys.argv[1]).read())
+kept, tried, before, after = int(m.group(1)), int(m.group(2)), float(m.group(3)), float(m.group(4))
+print("bunny at 10%%: %d exchange(s) kept of %d, largest distance %g -> %g x diagonal" % (kept, tried, before, after))
+assert 0 < kept <= 16 and tried >= 2 * kept and after < before
+PY
+unexchanged=$(resample "$bunny" unexchanged.surfel "$(script_with TargetPercentage=10 MaxErrorExchanges=0)")
+[ "$unexchanged" = 3483 ]
+if grep -q "exchange(s) of clusters" unexchanged.surfel.log; then exit 1; fi
 plain=$(resample "$bunny" plain.surfel "$SAMPLE_DIR/resample_level8.mlx")
 bounded=$(resample "$bunny" bounded.surfel "$(script_with MaxError=0.0005)")
 echo "bunny: $plain surfels without a bound, $bounded with MaxError 0.0005"

@@ -17,6 +17,9 @@
 // can have changed: a projection involves the surfels within its reach of the point
 // (SurfelSurface::Project), so only points whose reach holds a surfel that changed (split,
 // merged, refitted) are projected again: tens to hundreds of points per trial, not all of them.
+// The local measure equals a full one up to rounding, except where surfel centres tie for the
+// k-th nearest of a projection step (regular grids): which of them the rebuilt tree returns is
+// arbitrary, for a full measure too.
 #ifndef VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 #define VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 
@@ -132,6 +135,7 @@ public:
         worst_ = m.worst;
     }
 
+    double Distance(int i) const { return distance_[i]; }
     double Max() const { return max_; }
     int Worst() const { return worst_; }
     const std::vector<Surfel> &Surfels() const { return current_; }

@@ -1,0 +1,225 @@
+// Exchanges for the largest error at a fixed count (max_error_exchange.h): the local measure
+// agrees with a full one, the exchange keeps the count and lowers the metric's Delta*max, and it
+// runs only where it is asked for.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <vcg_ext/gaussphere/max_error_exchange.h>
+
+#include "pipeline_support.h"
+
+using namespace vcg::gaussphere;
+using gstest::P3;
+
+namespace {
+
+ResamplingParams AtTarget(int count, int exchanges)
+{
+    ResamplingParams p;
+    p.targetCount = count;
+    p.maxErrorExchanges = exchanges;
+    return p;
+}
+
+double Diagonal(const gstest::PointSet &s)
+{
+    vcg::Box3f box;
+    for (const P3 &p : s.points) box.Add(p);
+    return box.Diag();
+}
+
+vcg::tri::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels)
+{
+    std::vector<vcg::Point3f> centers, normals, major, minor;
+    std::vector<float> scale;
+    for (const Surfel &s : surfels) {
+        centers.push_back(s.position);
+        normals.push_back(s.normal);
+        major.push_back(s.majorAxis);
+        minor.push_back(s.minorAxis);
+        scale.push_back(s.blendScale);
+    }
+    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, vcg::tri::SurfelErrorParams(), &scale);
+}
+
+} // namespace
+
+// A projection's reach bounds the surfels it used: a surfel added beyond it changes nothing (up to
+// the rounding of sums taken in another order: the tree's), one added at the point changes the
+// result.
+TEST(MaxErrorExchange, ProjectionReachBoundsTheSurfelsUsed)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(16, true);
+    const ResamplingResult r = gstest::Resample(cube, AtTarget(120, 0));
+    const vcg::tri::SurfelErrorParams metric;
+    const double tolerance = metric.convergenceTolerance * Diagonal(cube);
+    vcg::tri::SurfelSurface::Scratch scratch;
+    for (int i : {0, 100, 500, 1000}) {
+        const vcg::Point3d q = vcg::Point3d::Construct(cube.points[i]), side = vcg::Point3d::Construct(cube.normals[i]);
+        double reach = -1;
+        const auto before = SurfaceOf(r.surfels).Project(q, side, metric.maxIterations, tolerance, scratch, &reach);
+        ASSERT_GT(reach, 0) << i;
+        ASSERT_TRUE(std::isfinite(reach)) << i;
+        // A copy of a surfel moved to 1.01 x reach from q, along each axis direction.
+        for (int axis = 0; axis < 3; ++axis) {
+            std::vector<Surfel> more = r.surfels;
+            Surfel far = more.front();
+            vcg::Point3d offset(0, 0, 0);
+            offset[axis] = 1.01 * reach;
+            far.position = vcg::Point3f::Construct(q + offset);
+            more.push_back(far);
+            const auto after = SurfaceOf(more).Project(q, side, metric.maxIterations, tolerance, scratch);
+            EXPECT_LT((after.foot - before.foot).Norm(), 1e-12) << "point " << i << " axis " << axis;
+        }
+        // A surfel just above q, facing its side, is blended there and lifts the surface.
+        std::vector<Surfel> closer = r.surfels;
+        Surfel near = closer.front();
+        near.normal = vcg::Point3f::Construct(side);
+        near.position = vcg::Point3f::Construct(q + side * (0.2 * reach));
+        const Eigen::Vector3d tangent = detail::AnyTangent(Eigen::Vector3d(side[0], side[1], side[2])) * (0.5 * reach);
+        near.majorAxis = near.minorAxis = vcg::Point3f(float(tangent[0]), float(tangent[1]), float(tangent[2]));
+        closer.push_back(near);
+        EXPECT_GT((SurfaceOf(closer).Project(q, side, metric.maxIterations, tolerance, scratch).foot - before.foot).Norm(),
+                  0.01 * reach) << i;
+    }
+}
+
+// Measuring a changed set only where its changes reach gives, point by point, the distances of
+// measuring it everywhere (up to rounding: a rebuilt tree sums the same weights in another
+// order; the changes themselves move distances by up to 1e-2 x diagonal). The cube is jittered:
+// on a regular grid, surfel centres tie for the k-th nearest, and which of them a rebuilt tree
+// returns is arbitrary (max_error_exchange.h).
+TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
+{
+    gstest::PointSet cube = gstest::CubeSurface(20, true);
+    std::mt19937 jitterRng(3);
+    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
+    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
+    const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
+    const double diagonal = Diagonal(cube);
+    BlendedDistances local(cube.points, cube.normals, diagonal);
+    local.Reset(r.surfels);
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> pick(0, int(r.surfels.size()) - 1);
+    std::vector<Surfel> changed = r.surfels;
+    for (int round = 0; round < 5; ++round) {
+        // Move one surfel along its normal, narrow another's blend, add a copy of a third.
+        Surfel &moved = changed[pick(rng)];
+        moved.position += moved.normal * float(0.01 * diagonal);
+        changed[pick(rng)].blendScale = 0.5f;
+        Surfel extra = changed[pick(rng)];
+        extra.position += extra.majorAxis * 0.5f;
+        changed.push_back(extra);
+
+        BlendedDistances::Measure m = local.Try(changed);
+        EXPECT_LT(m.points.size(), cube.points.size() / 2) << "round " << round << ": the changes are local";
+        local.Accept(std::move(m));
+        BlendedDistances full(cube.points, cube.normals, diagonal);
+        full.Reset(changed);
+        for (int i = 0; i < cube.Size(); ++i)
+            ASSERT_NEAR(local.Distance(i), full.Distance(i), 1e-9 * diagonal) << "round " << round << " point " << i;
+        EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
+    }
+}
+
+// At a target count the exchange keeps the count, and the largest distance it reports is the
+// metric's Delta*max, lower than without it.
+TEST(MaxErrorExchange, LowersTheMetricsLargestDistanceAtTheSameCount)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    for (int target : {60, 150, 400}) {
+        const ResamplingResult without = gstest::Resample(cube, AtTarget(target, 0));
+        const ResamplingResult with = gstest::Resample(cube, AtTarget(target, 16));
+        gstest::ExpectValidResult(with, cube);
+        EXPECT_EQ(int(with.surfels.size()), target);
+        EXPECT_EQ(without.stats.exchangeTrials, 0);
+        const gstest::Measured before = gstest::Measure(cube, without), after = gstest::Measure(cube, with);
+        const ResamplingStats &s = with.stats;
+        EXPECT_NEAR(s.exchangeMaxBefore, before.stats.normalizedDistance.max, 1e-7) << target;
+        EXPECT_NEAR(s.exchangeMaxAfter, after.stats.normalizedDistance.max, 1e-7) << target;
+        EXPECT_GT(s.exchangesForMaxError, 0) << target;
+        EXPECT_GE(s.exchangeTrials, 2 * s.exchangesForMaxError) << "a split alone, then with a merge";
+        EXPECT_LT(after.stats.normalizedDistance.max, before.stats.normalizedDistance.max) << target;
+        // The figures of the kept surfels, not of the last ones tried.
+        int narrowed = 0, fitted = 0;
+        for (const Surfel &f : with.surfels) {
+            narrowed += f.blendScale < 1;
+            fitted += f.fitOffset != 0;
+        }
+        EXPECT_EQ(s.surfelsNarrowedAtCreases, narrowed);
+        EXPECT_EQ(s.surfelsFitted, fitted);
+    }
+}
+
+TEST(MaxErrorExchange, RoundCapHolds)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    const ResamplingResult one = gstest::Resample(cube, AtTarget(150, 1));
+    const ResamplingResult many = gstest::Resample(cube, AtTarget(150, 16));
+    EXPECT_EQ(one.stats.exchangesForMaxError, 1);
+    EXPECT_GT(many.stats.exchangesForMaxError, 1);
+    EXPECT_LE(many.stats.exchangeMaxAfter, one.stats.exchangeMaxAfter);
+    EXPECT_EQ(one.stats.exchangeMaxBefore, many.stats.exchangeMaxBefore);
+}
+
+TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    ResamplingResult one, two;
+    {
+        gstest::ThreadCount t(1);
+        one = gstest::Resample(cube, AtTarget(150, 16));
+    }
+    {
+        gstest::ThreadCount t(2);
+        two = gstest::Resample(cube, AtTarget(150, 16));
+    }
+    EXPECT_GT(one.stats.exchangesForMaxError, 0);
+    EXPECT_EQ(one.stats.exchangesForMaxError, two.stats.exchangesForMaxError);
+    EXPECT_EQ(one.stats.exchangeMaxAfter, two.stats.exchangeMaxAfter);
+    EXPECT_EQ(one.representative, two.representative);
+    ASSERT_EQ(one.surfels.size(), two.surfels.size());
+    for (size_t c = 0; c < one.surfels.size(); ++c) EXPECT_EQ(one.surfels[c].position, two.surfels[c].position) << c;
+}
+
+// Only at a target count, and not with an error bound (which sets the count itself).
+TEST(MaxErrorExchange, OnlyAtATargetCount)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(16, true);
+    ResamplingParams level;
+    EXPECT_EQ(gstest::Resample(cube, level).stats.exchangeTrials, 0);
+    ResamplingParams bounded = AtTarget(100, 16);
+    bounded.maxErrorFraction = 0.01;
+    EXPECT_EQ(gstest::Resample(cube, bounded).stats.exchangeTrials, 0);
+    // One surfel: nothing to exchange.
+    const ResamplingResult single = gstest::Resample(cube, AtTarget(1, 16));
+    EXPECT_EQ(single.surfels.size(), 1u);
+    EXPECT_EQ(single.stats.exchangesForMaxError, 0);
+}
+
+TEST(MaxErrorExchange, Validation)
+{
+    ResamplingParams p;
+    p.maxErrorExchanges = -1;
+    EXPECT_NE(p.Validate().find("MaxErrorExchanges"), std::string::npos);
+    p.maxErrorExchanges = 100001;
+    EXPECT_NE(p.Validate().find("MaxErrorExchanges"), std::string::npos);
+    p.maxErrorExchanges = 0;
+    EXPECT_EQ(p.Validate(), "");
+}
+
+namespace {
+bool stopAtExchanges(int, const char *what) { return std::string(what).find("exchanges") == std::string::npos; }
+} // namespace
+
+TEST(MaxErrorExchange, CancelledFromTheCallback)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(16, true);
+    OrientedPointMesh m;
+    gstest::ToMesh(cube, m);
+    EXPECT_THROW(ResamplePointSet(m, AtTarget(100, 16), stopAtExchanges), ResamplingCancelled);
+    EXPECT_NO_THROW(ResamplePointSet(m, AtTarget(100, 0), stopAtExchanges));
+}
