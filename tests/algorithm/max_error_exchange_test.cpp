@@ -31,19 +31,7 @@ double Diagonal(const gstest::PointSet &s)
     return box.Diag();
 }
 
-vcg::tri::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels)
-{
-    std::vector<vcg::Point3f> centers, normals, major, minor;
-    std::vector<float> scale;
-    for (const Surfel &s : surfels) {
-        centers.push_back(s.position);
-        normals.push_back(s.normal);
-        major.push_back(s.majorAxis);
-        minor.push_back(s.minorAxis);
-        scale.push_back(s.blendScale);
-    }
-    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, vcg::tri::SurfelErrorParams(), &scale);
-}
+vcg::tri::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels) { return BlendedSurfaceOf(surfels); }
 
 } // namespace
 

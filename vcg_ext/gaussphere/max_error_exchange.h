@@ -34,6 +34,7 @@
 #include "adaptive_neighbors.h"
 #include "cluster_refinement.h"
 #include "clustering.h"
+#include "surface_error_bound.h"
 #include "surfel_generation.h"
 
 namespace vcg {
@@ -143,7 +144,7 @@ public:
     /// The surfels (clusters) blended at the last step of point i's projection.
     std::vector<int> BlendedAt(int i) const
     {
-        const vcg::tri::SurfelSurface surface = Surface(current_);
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current_, metric_);
         vcg::tri::SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
@@ -159,20 +160,6 @@ private:
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
     }
 
-    vcg::tri::SurfelSurface Surface(const std::vector<Surfel> &surfels) const
-    {
-        std::vector<vcg::Point3f> centers, normals, major, minor;
-        std::vector<float> blendScale;
-        for (const Surfel &s : surfels) {
-            centers.push_back(s.position);
-            normals.push_back(s.normal);
-            major.push_back(s.majorAxis);
-            minor.push_back(s.minorAxis);
-            blendScale.push_back(s.blendScale);
-        }
-        return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, metric_, &blendScale);
-    }
-
     /// Projects m.points on m.surfels' blended surface; sets their distances, reaches, the max.
     void Project(Measure &m) const
     {
@@ -180,7 +167,7 @@ private:
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.0);
         if (count == 0) return;
-        const vcg::tri::SurfelSurface surface = Surface(m.surfels);
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(m.surfels, metric_);
 #pragma omp parallel
         {
             vcg::tri::SurfelSurface::Scratch scratch;

@@ -44,6 +44,24 @@ namespace gaussphere {
 /// bench/, 1/8 on all 16).
 constexpr float kMinBlendScale = 0.125f;
 
+/// The blended surface of `surfels` as vcg_ext/surfel_error defines it (their ellipses and blend
+/// scales), for projections with `metric`'s parameters.
+/// \pre surfels non-empty, as GenerateSurfels makes them.
+inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels,
+                                                const vcg::tri::SurfelErrorParams &metric = vcg::tri::SurfelErrorParams())
+{
+    std::vector<vcg::Point3f> centers, normals, major, minor;
+    std::vector<float> blendScale;
+    for (const Surfel &s : surfels) {
+        centers.push_back(s.position);
+        normals.push_back(s.normal);
+        major.push_back(s.majorAxis);
+        minor.push_back(s.minorAxis);
+        blendScale.push_back(s.blendScale);
+    }
+    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, metric, &blendScale);
+}
+
 struct SurfaceErrorBoundResult
 {
     int splits = 0;         ///< clusters split (with those re-split for their own planes)
@@ -89,17 +107,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
         blendScale.resize(clusters.clusterCount, 1.f);
         result.surfels = GenerateSurfels(points, normals, spacing, clusters, narrowedParam);
         if (adjustSurfels) adjustSurfels(result.surfels);
-        std::vector<vcg::Point3f> centers, surfelNormals, major, minor;
-        std::vector<float> surfelBlendScale;
-        for (const Surfel &s : result.surfels) {
-            centers.push_back(s.position);
-            surfelNormals.push_back(s.normal);
-            major.push_back(s.majorAxis);
-            minor.push_back(s.minorAxis);
-            surfelBlendScale.push_back(s.blendScale);
-        }
-        const vcg::tri::SurfelSurface surface =
-            vcg::tri::MakeEllipseSurfelSurface(centers, surfelNormals, major, minor, metric, &surfelBlendScale);
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(result.surfels, metric);
         ++result.rounds;
         // Clusters to split: those of the surfels nearest to the projection of a point beyond
         // the bound (the ones the blend draws from, and a few facing away), and the point's own.
