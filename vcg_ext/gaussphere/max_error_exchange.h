@@ -217,24 +217,27 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     result.maxBefore = distances.Max();
     const double invH2 = 1.0 / (weightWidth * weightWidth);
     const int count = clusters.clusterCount;
-    // Halves of kept exchanges are not merged again (that would undo them); neither, within a
-    // round, are the clusters of a merge that failed (twirl at 5 %: the next cheapest pairs
+    // The clusters of a kept exchange are not merged again (that would undo it); neither, within
+    // a round, are the clusters of a merge that failed (twirl at 5 %: the next cheapest pairs
     // merged the same neighbourhood back, and Delta*max stopped at 0.077 instead of 0.054).
+    // The pairs between the other clusters keep their links and costs, so they are listed once:
+    // every linked pair, cheapest first (ties by index: deterministic).
     std::vector<char> settled(count, 0);
+    std::vector<std::pair<double, std::pair<int, int>>> pairs;
+    if (count >= 2 && param.maxRounds > 0) {
+        const MergeCostModel model(points, normals, clusters, weightWidth);
+        const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
+        for (int a = 0; a < count; ++a)
+            for (int b : adjacent[a])
+                if (a < b) pairs.push_back({model.Cost(a, b), {a, b}});
+        std::sort(pairs.begin(), pairs.end());
+    }
     for (int round = 0; round < param.maxRounds && count >= 2; ++round) {
         if (progress && !progress(round)) {
             result.cancelled = true;
             break;
         }
         const ClusterMembers members(clusters);
-        const MergeCostModel model(points, normals, clusters, weightWidth);
-        // Every linked pair, cheapest first (ties by index: deterministic).
-        std::vector<std::pair<double, std::pair<int, int>>> pairs;
-        const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
-        for (int a = 0; a < count; ++a)
-            for (int b : adjacent[a])
-                if (a < b) pairs.push_back({model.Cost(a, b), {a, b}});
-        std::sort(pairs.begin(), pairs.end());
 
         // The worst point's cluster first, then those of the surfels blended at it.
         std::vector<int> candidates{clusters.label[distances.Worst()]};
@@ -274,7 +277,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 if (measure.max < distances.Max()) {
                     distances.Accept(std::move(measure));
                     clusters = std::move(exchanged);
-                    settled[c] = settled[gone] = 1;
+                    settled[c] = settled[keep] = settled[gone] = 1;
                     kept = true;
                     break;
                 }
