@@ -16,7 +16,7 @@ count=$(resample "$bunny" exact.surfel "$(script_with TargetCount=1234)")
 PYTHONPATH="$FILTER_TESTS_DIR" python3 - ten.surfel.log <<'PY'
 import re, sys
 m = re.search(r"(\d+) exchange\(s\) of clusters kept of (\d+) tried, largest distance to the blended surface "
-              r"([0-9.]+) -> ([0-9.]+) x diagonal", open(sys.argv[1]).read())
+              r"([0-9.e-]+) -> ([0-9.e-]+) x diagonal", open(sys.argv[1]).read())
 kept, tried, before, after = int(m.group(1)), int(m.group(2)), float(m.group(3)), float(m.group(4))
 print("bunny at 10%%: %d exchange(s) kept of %d, largest distance %g -> %g x diagonal" % (kept, tried, before, after))
 assert 0 < kept <= 16 and tried >= 2 * kept and after < before

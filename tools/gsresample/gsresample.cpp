@@ -74,7 +74,7 @@ int main(int argc, char **argv)
         WriteSurfels(r.surfels, out);
         const ResamplingStats &s = r.stats;
         std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
-                    "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.5f -> %.5f) crease-narrowed %d halvings %d above-bound %d (max %.5f) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+                    "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.3g -> %.3g) crease-narrowed %d halvings %d above-bound %d (max %.5f) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
                     "refinement %.3f surfels %.3f exchanges %.3f)\n",
                     s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
                     s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.normalErrorMax, s.levelUsed, s.levelsTried, s.splitsForErrorBound,

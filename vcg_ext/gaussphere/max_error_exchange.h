@@ -6,24 +6,29 @@
 // vcg_ext/surfel_error measures it), is set by a single cluster: a merged, elongated surfel
 // that leaves a member without a surfel facing it, or a cluster straddling a bend. The exchange
 // trades clusters where the surface is easy for clusters where it is not, keeping the count:
-// it splits a cluster at the worst point (its own, then those of the surfels blended there),
-// merges the cheapest pair of neighbouring clusters elsewhere (MergeCostModel, as MergeToCount
-// chooses; pairs touching the split cluster excluded), and keeps the exchange if the largest
-// distance went down. A split that does not lower it by itself (the count one higher) is not
-// tried with merges; a merge that raises it again is followed by the next cheapest pair.
-// Rounds go on while an exchange is kept, up to maxRounds.
+// it splits a cluster at the worst point (its own, then those of the surfels blended there,
+// nearest first), merges the cheapest pair of neighbouring clusters elsewhere (MergeCostModel, as
+// MergeToCount chooses; pairs touching the split cluster or an earlier exchange excluded), and
+// keeps the exchange if the largest distance went down. A split that does not lower it by itself
+// (the count one higher) is not tried with merges; a merge that raises it again is followed by
+// the next cheapest pair that shares no cluster with it. Rounds go on while an exchange is kept,
+// up to maxRounds.
 //
-// Cost. Each trial makes the surfels anew and measures the distances again, but only where they
-// can have changed: a projection involves the surfels within its reach of the point
-// (SurfelSurface::Project), so only points whose reach holds a surfel that changed (split,
-// merged, refitted) are projected again: tens to hundreds of points per trial, not all of them.
-// The local measure equals a full one up to rounding, except where surfel centres tie for the
-// k-th nearest of a projection step (regular grids): which of them the rebuilt tree returns is
-// arbitrary, for a full measure too.
+// Cost. A trial measures the distances again only where they can have changed: a projection
+// involves the surfels within its reach of the point (SurfelSurface::Project), so only points
+// whose reach holds a surfel that changed (split, merged, refitted) are projected again, tens to
+// hundreds per trial. The rest of a trial is linear in the points but light: the surfels are made
+// anew (makeSurfels) and every point's reach is compared with the changed centres. Measured
+// (2 threads): the dragon at 5 % (437,645 points) 1.5 s of exchanges for 0.8 s of resampling; 2
+// million points at 10 % 7.6 s for 4.4 s. The local measure equals a full one up to rounding,
+// except where surfel centres tie for the k-th nearest of a projection step (regular grids):
+// which of them the rebuilt tree returns is arbitrary, for a full measure too.
 #ifndef VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 #define VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstring>
 #include <functional>
 #include <utility>
@@ -40,13 +45,16 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Search widths measured with bench/'s models at 5-30 % (control_targets): with one split and
-/// one merge per round, 6 of the 17 cases where a peer's Delta*max, Delta*p99.9 or Delta*RMS was
-/// lower stayed; with 4 and 4, 2; 8 and 8 fixed no more, at twice the trials.
+/// Search widths measured with bench/'s models at 5-30 % (15 models x 4 targets against the peers of
+/// control_targets): with one split and one merge per round, 6 of the 17 cases where a peer's
+/// Delta*max, Delta*p99.9 or Delta*RMS was lower stayed; with 4 and 4, 2; 8 and 8 fixed no more,
+/// at twice the trials. With the split candidates nearest first (and facing the point), 4 left
+/// the igea at 10 % without a kept exchange (Delta*max 1.4x higher), 6 lowered Delta*max on 36 of
+/// 60 runs and raised it on none (geometric mean -5 %); 8 did the same.
 struct MaxErrorExchangeParams
 {
     int maxRounds = 16;      ///< exchanges kept at most
-    int splitCandidates = 4; ///< clusters at the worst point tried for the split, per round
+    int splitCandidates = 6; ///< clusters at the worst point tried for the split, per round
     int mergeCandidates = 4; ///< cheapest pairs tried for the merge, per split that helps
 };
 
@@ -73,7 +81,8 @@ public:
     {
         std::vector<Surfel> surfels;
         std::vector<int> points;          ///< projected again
-        std::vector<double> distance, reach;
+        std::vector<double> distance;
+        std::vector<float> reach;
         double max = 0;
         int worst = -1;
     };
@@ -82,14 +91,15 @@ public:
     void Reset(std::vector<Surfel> surfels)
     {
         const int n = int(points_.size());
-        Measure all;
-        all.points.resize(n);
-        for (int i = 0; i < n; ++i) all.points[i] = i;
-        all.surfels = std::move(surfels);
         distance_.assign(n, 0.0);
-        reach_.assign(n, 0.0);
-        Project(all);
-        Accept(std::move(all));
+        reach_.assign(n, 0.f);
+        current_ = std::move(surfels);
+        max_ = 0;
+        worst_ = -1;
+        if (n == 0 || current_.empty()) return;
+        Project(current_, nullptr, n, distance_.data(), reach_.data());
+        for (int i = 0; i < n; ++i) // in point order: the same worst point for any thread count
+            if (worst_ < 0 || distance_[i] > max_) { max_ = distance_[i]; worst_ = i; }
     }
 
     /// Measures `surfels` where they differ from the current set (same cluster numbering; extra
@@ -112,7 +122,7 @@ public:
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < n; ++i) {
             const vcg::Point3d p = vcg::Point3d::Construct(points_[i]);
-            const double r2 = reach_[i] * reach_[i];
+            const double r2 = double(reach_[i]) * reach_[i];
             for (const vcg::Point3d &c : moved)
                 if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
         }
@@ -120,7 +130,12 @@ public:
             if (affected[i]) m.points.push_back(i);
             else if (distance_[i] > untouchedMax || untouchedWorst < 0) { untouchedMax = distance_[i]; untouchedWorst = i; }
         }
-        Project(m);
+        const int count = int(m.points.size());
+        m.distance.assign(count, 0.0);
+        m.reach.assign(count, 0.f);
+        Project(m.surfels, m.points.data(), count, m.distance.data(), m.reach.data());
+        for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
+            if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
     }
@@ -141,15 +156,22 @@ public:
     int Worst() const { return worst_; }
     const std::vector<Surfel> &Surfels() const { return current_; }
 
-    /// The surfels (clusters) blended at the last step of point i's projection.
+    /// The surfels (clusters) facing point i's side among the k nearest to the last step of its
+    /// projection (the ones blended there), nearest first (ties by index).
     std::vector<int> BlendedAt(int i) const
     {
         const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current_, metric_);
         vcg::tri::SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
+        std::vector<std::pair<float, int>> nearest;
+        for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
+            const int c = scratch.queue.getIndex(j);
+            if (current_[c].normal.dot(normals_[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
+        }
+        std::sort(nearest.begin(), nearest.end());
         std::vector<int> blended;
-        for (int j = 0; j < scratch.queue.getNofElements(); ++j) blended.push_back(scratch.queue.getIndex(j));
+        for (const auto &e : nearest) blended.push_back(e.second);
         return blended;
     }
 
@@ -160,35 +182,34 @@ private:
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
     }
 
-    /// Projects m.points on m.surfels' blended surface; sets their distances, reaches, the max.
-    void Project(Measure &m) const
+    /// Projects the points `which[0, count)` (null: 0..count-1) on the blended surface of
+    /// `surfels`: their distances and reaches (rounded up to floats) into distance[t], reach[t].
+    void Project(const std::vector<Surfel> &surfels, const int *which, int count, double *distance, float *reach) const
     {
-        const int count = int(m.points.size());
-        m.distance.assign(count, 0.0);
-        m.reach.assign(count, 0.0);
         if (count == 0) return;
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(m.surfels, metric_);
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
 #pragma omp parallel
         {
             vcg::tri::SurfelSurface::Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
             for (int t = 0; t < count; ++t) {
-                const int i = m.points[t];
+                const int i = which ? which[t] : t;
                 const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
+                double pointReach = 0;
                 const auto projection = surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations,
-                                                        tolerance_, scratch, &m.reach[t]);
-                m.distance[t] = (q - projection.foot).Norm();
+                                                        tolerance_, scratch, &pointReach);
+                distance[t] = (q - projection.foot).Norm();
+                reach[t] = std::nextafter(float(pointReach), std::numeric_limits<float>::infinity());
             }
         }
-        for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
-            if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
     }
 
     const PointArray &points_, &normals_;
     const vcg::tri::SurfelErrorParams metric_;
     double tolerance_;
     std::vector<Surfel> current_;
-    std::vector<double> distance_, reach_;
+    std::vector<double> distance_;
+    std::vector<float> reach_; // 4 bytes a point: at 20 million points the exchange's largest array
     double max_ = 0;
     int worst_ = -1;
 };
@@ -196,12 +217,15 @@ private:
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
 /// to the blended surface of the surfels `makeSurfels` makes of them (file header), measured as
 /// vcg::tri::ComputeSurfelError measures it (default SurfelErrorParams) over the bounding-box
-/// `diagonal` of the points. `progress(round)` is called before each round (from 0); when it
-/// returns false the exchange stops with cancelled = true and the clusters of the last kept
-/// exchange. On return `surfels` holds makeSurfels(clusters).
-/// \pre points and unit normals as clustered, `graph` their neighbour graph; clusters compact with
-///      clusterCount >= 1; makeSurfels(c) returns one surfel per cluster of c in cluster order, each
-///      depending only on the clustering (GenerateSurfels and the resampler's adjustments).
+/// `diagonal` of the points. `progress(round)` is called before the first measure and before
+/// each trial (round from 0); when it returns false the exchange stops with cancelled = true and
+/// the clusters of the last kept exchange. On return `surfels` holds makeSurfels(clusters).
+/// Nothing is tried with fewer than 3 clusters, weightWidth <= 0 (no merge cost) or every point
+/// on the surface already.
+/// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
+///      graph; clusters compact with clusterCount >= 1; makeSurfels(c) returns one surfel per
+///      cluster of c in cluster order, each depending only on the clustering (GenerateSurfels and
+///      the resampler's adjustments).
 /// \post clusters.clusterCount unchanged; maxAfter <= maxBefore; deterministic: the result does
 ///       not depend on the thread count.
 inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, const PointArray &normals,
@@ -212,19 +236,33 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                                                   const std::function<bool(int)> &progress = nullptr)
 {
     MaxErrorExchangeResult result;
+    const int count = clusters.clusterCount;
+    const bool active = count >= 3 && param.maxRounds > 0 && weightWidth > 0;
+    if (!active) {
+        surfels = makeSurfels(clusters);
+        return result;
+    }
+    int round = 0;
+    auto goOn = [&]() {
+        if (progress && !progress(round)) result.cancelled = true;
+        return !result.cancelled;
+    };
     BlendedDistances distances(points, normals, diagonal);
+    if (!goOn()) {
+        surfels = makeSurfels(clusters);
+        return result;
+    }
     distances.Reset(makeSurfels(clusters));
     result.maxBefore = distances.Max();
     const double invH2 = 1.0 / (weightWidth * weightWidth);
-    const int count = clusters.clusterCount;
-    // The clusters of a kept exchange are not merged again (that would undo it); neither, within
-    // a round, are the clusters of a merge that failed (twirl at 5 %: the next cheapest pairs
-    // merged the same neighbourhood back, and Delta*max stopped at 0.077 instead of 0.054).
-    // The pairs between the other clusters keep their links and costs, so they are listed once:
-    // every linked pair, cheapest first (ties by index: deterministic).
+    // The clusters of a kept exchange are not merged again (that would undo it); neither, among
+    // the merges tried with one split, are the clusters of a merge that failed (twirl at 5 %: the
+    // next cheapest pairs merged the same neighbourhood back, and Delta*max stopped at 0.077
+    // instead of 0.054). The pairs between the other clusters keep their links and costs, so
+    // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
     std::vector<char> settled(count, 0);
     std::vector<std::pair<double, std::pair<int, int>>> pairs;
-    if (count >= 2 && param.maxRounds > 0) {
+    if (distances.Max() > 0) {
         const MergeCostModel model(points, normals, clusters, weightWidth);
         const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
         for (int a = 0; a < count; ++a)
@@ -232,21 +270,16 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 if (a < b) pairs.push_back({model.Cost(a, b), {a, b}});
         std::sort(pairs.begin(), pairs.end());
     }
-    for (int round = 0; round < param.maxRounds && count >= 2; ++round) {
-        if (progress && !progress(round)) {
-            result.cancelled = true;
-            break;
-        }
+    for (; round < param.maxRounds && !pairs.empty() && distances.Max() > 0; ++round) {
         const ClusterMembers members(clusters);
-
-        // The worst point's cluster first, then those of the surfels blended at it.
+        // The worst point's cluster first, then those of the surfels blended at it, nearest first.
         std::vector<int> candidates{clusters.label[distances.Worst()]};
         for (int c : distances.BlendedAt(distances.Worst()))
             if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
         bool kept = false;
         int splitsTried = 0;
         for (int c : candidates) {
-            if (kept || splitsTried >= param.splitCandidates) break;
+            if (kept || result.cancelled || splitsTried >= param.splitCandidates) break;
             if (members.Size(c) < 2) continue;
             std::vector<int> part(members.begin(c), members.end(c));
             int *mid = SplitMembers(points, normals, part.data(), part.data() + part.size(), invH2);
@@ -254,10 +287,12 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
             ++splitsTried;
             const std::vector<int> secondHalf(mid, part.data() + part.size());
             // The split alone, its second half as an extra cluster: if that does not lower the
-            // largest distance, no merge will.
+            // largest distance, a merge elsewhere is not tried (it seldom helps where the split
+            // did not).
             Clustering split = clusters;
             for (int i : secondHalf) split.label[i] = count;
             split.clusterCount = count + 1;
+            if (!goOn()) break;
             ++result.trials;
             if (!(distances.Try(makeSurfels(split)).max < distances.Max())) continue;
             // With a merge: the second half takes the index of the cluster merged away.
@@ -272,6 +307,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 Clustering exchanged = clusters;
                 for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchanged.label[*i] = keep;
                 for (int i : secondHalf) exchanged.label[i] = gone;
+                if (!goOn()) break;
                 ++result.trials;
                 BlendedDistances::Measure measure = distances.Try(makeSurfels(exchanged));
                 if (measure.max < distances.Max()) {

@@ -271,7 +271,9 @@ public:
     /// k nearest is, in which case the side of the heaviest surfel is used.
     /// `reach`, if given, receives a distance from q beyond which no surfel took part in the
     /// projection: adding, removing or changing only surfels whose centres lie farther than
-    /// that from q leaves its result unchanged (infinite when fewer than k surfels exist).
+    /// that from q leaves its result unchanged, up to the order in which a rebuilt tree sums the
+    /// weights and to which of several centres tied at the k-th distance it returns (infinite
+    /// when fewer than k surfels exist).
     Projection Project(const Point3d& q, const Point3d& side, int maxIterations, double tolerance,
                        Scratch& scratch, double* reach = nullptr) const
     {
