@@ -31,6 +31,7 @@
 #include <limits>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,7 @@
 #include "clustering.h"
 #include "surface_error_bound.h"
 #include "surfel_generation.h"
+#include "surfel_recipe.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -215,23 +217,21 @@ private:
 };
 
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
-/// to the blended surface of the surfels `makeSurfels` makes of them (file header), measured as
+/// to the blended surface of the surfels `maker` makes of them (file header), measured as
 /// vcg::tri::ComputeSurfelError measures it (default SurfelErrorParams) over the bounding-box
 /// `diagonal` of the points. `progress(round)` is called before the first measure and before
 /// each trial (round from 0); when it returns false the exchange stops with cancelled = true and
-/// the clusters of the last kept exchange. On return `surfels` holds makeSurfels(clusters).
+/// the clusters of the last kept exchange. On return `surfels` holds maker.Make(clusters).fitted.
 /// Nothing is tried with fewer than 3 clusters, weightWidth <= 0 (no merge cost) or every point
 /// on the surface already.
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
-///      graph; clusters compact with clusterCount >= 1; makeSurfels(c) returns one surfel per
-///      cluster of c in cluster order, each depending only on the clustering (GenerateSurfels and
-///      the resampler's adjustments).
+///      graph (the maker's too); clusters compact with clusterCount >= 1.
 /// \post clusters.clusterCount unchanged; maxAfter <= maxBefore; deterministic: the result does
 ///       not depend on the thread count.
 inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, const PointArray &normals,
                                                   const NeighborGraph &graph, double weightWidth, double diagonal,
                                                   const MaxErrorExchangeParams &param, Clustering &clusters,
-                                                  const std::function<std::vector<Surfel>(const Clustering &)> &makeSurfels,
+                                                  const SurfelMaker &maker,
                                                   std::vector<Surfel> &surfels,
                                                   const std::function<bool(int)> &progress = nullptr)
 {
@@ -239,7 +239,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     const int count = clusters.clusterCount;
     const bool active = count >= 3 && param.maxRounds > 0 && weightWidth > 0;
     if (!active) {
-        surfels = makeSurfels(clusters);
+        surfels = maker.Make(clusters).fitted;
         return result;
     }
     int round = 0;
@@ -249,10 +249,11 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     };
     BlendedDistances distances(points, normals, diagonal);
     if (!goOn()) {
-        surfels = makeSurfels(clusters);
+        surfels = maker.Make(clusters).fitted;
         return result;
     }
-    distances.Reset(makeSurfels(clusters));
+    SurfelMaker::Set current = maker.Make(clusters);
+    distances.Reset(current.fitted);
     result.maxBefore = distances.Max();
     const double invH2 = 1.0 / (weightWidth * weightWidth);
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
@@ -285,7 +286,9 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
             int *mid = SplitMembers(points, normals, part.data(), part.data() + part.size(), invH2);
             if (!mid) continue;
             ++splitsTried;
-            const std::vector<int> secondHalf(mid, part.data() + part.size());
+            std::vector<int> firstHalf(part.data(), mid), secondHalf(mid, part.data() + part.size());
+            std::sort(firstHalf.begin(), firstHalf.end());
+            std::sort(secondHalf.begin(), secondHalf.end());
             // The split alone, its second half as an extra cluster: if that does not lower the
             // largest distance, a merge elsewhere is not tried (it seldom helps where the split
             // did not).
@@ -294,7 +297,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
             split.clusterCount = count + 1;
             if (!goOn()) break;
             ++result.trials;
-            if (!(distances.Try(makeSurfels(split)).max < distances.Max())) continue;
+            const SurfelMaker::Set splitSurfels = maker.Update(current, clusters, members, split, {c, count}, {firstHalf, secondHalf});
+            if (!(distances.Try(splitSurfels.fitted).max < distances.Max())) continue;
             // With a merge: the second half takes the index of the cluster merged away.
             std::vector<char> excluded = settled;
             excluded[c] = 1;
@@ -307,12 +311,18 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 Clustering exchanged = clusters;
                 for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchanged.label[*i] = keep;
                 for (int i : secondHalf) exchanged.label[i] = gone;
+                std::vector<int> merged;
+                std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
+                           std::back_inserter(merged));
                 if (!goOn()) break;
                 ++result.trials;
-                BlendedDistances::Measure measure = distances.Try(makeSurfels(exchanged));
+                SurfelMaker::Set trialSurfels =
+                    maker.Update(current, clusters, members, exchanged, {c, gone, keep}, {firstHalf, secondHalf, merged});
+                BlendedDistances::Measure measure = distances.Try(trialSurfels.fitted);
                 if (measure.max < distances.Max()) {
                     distances.Accept(std::move(measure));
                     clusters = std::move(exchanged);
+                    current = std::move(trialSurfels);
                     settled[c] = settled[keep] = settled[gone] = 1;
                     kept = true;
                     break;

@@ -72,6 +72,7 @@
 #include "surface_error_bound.h"
 #include "surfel_generation.h"
 #include "surfel_offset.h"
+#include "surfel_recipe.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -482,17 +483,17 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
-        auto makeSurfels = [&](const Clustering &c) {
-            std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, c, surfelParam);
-            NarrowBlendsAroundCreases(graph, c, param.creaseBlendScale, surfels);
-            if (param.fitOffsets) FitSurfelOffsets(points, normals, graph, c, normalization.creasePoints, surfels);
-            return surfels;
-        };
+        SurfelRecipe recipe;
+        recipe.generation = surfelParam;
+        recipe.creaseBlendScale = param.creaseBlendScale;
+        recipe.fitOffsets = param.fitOffsets;
+        recipe.creasePoints = normalization.creasePoints;
+        const SurfelMaker maker(points, normals, graph, recipe);
         if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
             MaxErrorExchangeParams exchangeParam;
             exchangeParam.maxRounds = param.maxErrorExchanges;
             const MaxErrorExchangeResult exchange = ExchangeForMaxError(
-                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, makeSurfels, result.surfels,
+                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, maker, result.surfels,
                 [cb, &param](int round) {
                     return cb == nullptr ||
                            cb(90 + 9 * round / param.maxErrorExchanges, "Gaussian sphere resampling: exchanges for the largest error");
@@ -504,7 +505,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
         } else {
-            result.surfels = makeSurfels(clusters);
+            result.surfels = maker.Make(clusters).fitted;
         }
         // Read off the surfels: the exchange made many sets, the figures describe the kept one.
         stats.surfelsNarrowedAtCreases = 0;

@@ -170,6 +170,47 @@ inline ClusterFrame ComputeClusterFrame(const PointArray &points,
     return f;
 }
 
+/// The surfel of one cluster, members [begin, end) (non-empty, in increasing order), as
+/// GenerateSurfels makes it; blendScale left at 1.
+inline Surfel MakeSurfel(const PointArray &points, const PointArray &normals, const FlatVector<float> &spacing,
+                         const int *begin, const int *end, const SurfelGenerationParams &param)
+{
+    using detail::ToEigen;
+    const int size = int(end - begin);
+    const double invH2 = param.weightWidth > 0 ? 1.0 / (param.weightWidth * param.weightWidth) : 0.0;
+    const ClusterFrame frame = ComputeClusterFrame(points, normals, begin, end, invH2);
+    const Eigen::Vector3d &centroid = frame.centroid, &normal = frame.normal;
+    Eigen::Vector3d u = frame.u, v = frame.v;
+    double meanSpacing = 0;
+    for (const int *i = begin; i != end; ++i) meanSpacing += spacing[*i];
+    meanSpacing /= size;
+
+    // Spread along u and v; the longer direction becomes the major axis.
+    double sxx = 0, syy = 0;
+    for (const int *i = begin; i != end; ++i) {
+        const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
+        sxx += d.dot(u) * d.dot(u);
+        syy += d.dot(v) * d.dot(v);
+    }
+    if (syy > sxx) { std::swap(sxx, syy); const Eigen::Vector3d t = u; u = v; v = -t; }
+    const double aspect = sxx > 0 ? std::max(param.minAspect, std::sqrt(syy / sxx)) : 1.0;
+    double scale = 0; // smallest major semi-axis whose ellipse (aspect fixed) holds every member
+    for (const int *i = begin; i != end; ++i) {
+        const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
+        const double x = d.dot(u), y = d.dot(v) / aspect;
+        scale = std::max(scale, x * x + y * y);
+    }
+    scale = std::sqrt(scale);
+    const double margin = param.coverageMargin * meanSpacing;
+    Surfel s;
+    s.position = detail::ToPoint(frame.center);
+    s.normal = detail::ToPoint(normal);
+    s.majorAxis = detail::ToPoint(u * (scale + margin));
+    s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
+    s.memberCount = size;
+    return s;
+}
+
 /// One surfel per cluster, in cluster order. `spacing` is the per-point local sample
 /// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
 inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
@@ -177,44 +218,12 @@ inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
                                            const FlatVector<float> &spacing, const Clustering &clusters,
                                            const SurfelGenerationParams &param)
 {
-    using detail::ToEigen;
     const ClusterMembers members(clusters);
     std::vector<Surfel> surfels(clusters.clusterCount);
-    const double invH2 = param.weightWidth > 0 ? 1.0 / (param.weightWidth * param.weightWidth) : 0.0;
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < clusters.clusterCount; ++c) {
-        const int size = members.Size(c);
-        const ClusterFrame frame = ComputeClusterFrame(points, normals, members.begin(c), members.end(c), invH2);
-        const Eigen::Vector3d &centroid = frame.centroid, &normal = frame.normal;
-        Eigen::Vector3d u = frame.u, v = frame.v;
-        double meanSpacing = 0;
-        for (const int *i = members.begin(c); i != members.end(c); ++i) meanSpacing += spacing[*i];
-        meanSpacing /= size;
-
-        // Spread along u and v; the longer direction becomes the major axis.
-        double sxx = 0, syy = 0;
-        for (const int *i = members.begin(c); i != members.end(c); ++i) {
-            const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
-            sxx += d.dot(u) * d.dot(u);
-            syy += d.dot(v) * d.dot(v);
-        }
-        if (syy > sxx) { std::swap(sxx, syy); const Eigen::Vector3d t = u; u = v; v = -t; }
-        const double aspect = sxx > 0 ? std::max(param.minAspect, std::sqrt(syy / sxx)) : 1.0;
-        double scale = 0; // smallest major semi-axis whose ellipse (aspect fixed) holds every member
-        for (const int *i = members.begin(c); i != members.end(c); ++i) {
-            const Eigen::Vector3d d = ToEigen(points[*i]) - centroid;
-            const double x = d.dot(u), y = d.dot(v) / aspect;
-            scale = std::max(scale, x * x + y * y);
-        }
-        scale = std::sqrt(scale);
-        const double margin = param.coverageMargin * meanSpacing;
-        Surfel &s = surfels[c];
-        s.position = detail::ToPoint(frame.center);
-        s.normal = detail::ToPoint(normal);
-        s.majorAxis = detail::ToPoint(u * (scale + margin));
-        s.minorAxis = detail::ToPoint(v * (aspect * scale + margin));
-        s.memberCount = size;
-        if (param.blendScale && c < int(param.blendScale->size())) s.blendScale = (*param.blendScale)[c];
+        surfels[c] = MakeSurfel(points, normals, spacing, members.begin(c), members.end(c), param);
+        if (param.blendScale && c < int(param.blendScale->size())) surfels[c].blendScale = (*param.blendScale)[c];
     }
     return surfels;
 }

@@ -95,6 +95,96 @@ struct SurfelOffsetResult
     double largest = 0;   ///< the longest move, model units
 };
 
+/// The points of cluster c's members [begin, end) (in increasing order) that FitSurfelOffsets
+/// compares with the blend: kOffsetSamples of them, evenly spread.
+template <class Visit>
+void ForEachOffsetSample(const int *begin, const int *end, Visit &&visit)
+{
+    const int size = int(end - begin), stride = std::max(1, (size + kOffsetSamples - 1) / kOffsetSamples);
+    for (int t = 0; t < size; t += stride) visit(begin[t]);
+}
+
+/// The clusters whose surfels are blended at point i with cluster c's (FitSurfelOffsets): those of
+/// its first kOffsetNeighbors neighbour slots facing its side, without repeats, after c itself.
+/// Returns how many were written to `around` (room for kOffsetNeighbors + 1).
+inline int BlendedAroundSample(const PointArray &normals, const NeighborGraph &graph, const IndexArray &label,
+                               const std::vector<Surfel> &surfels, int c, int i, int *around)
+{
+    int blended = 1;
+    around[0] = c;
+    const int *q = graph.begin(i), *end = q + std::min<int>(graph.found[i], kOffsetNeighbors);
+    for (; q != end; ++q) {
+        const int l = label[*q];
+        // Thin parts: surfels facing away belong to the other sheet.
+        if (l >= 0 && std::find(around, around + blended, l) == around + blended && surfels[l].normal.dot(normals[i]) > 0)
+            around[blended++] = l;
+    }
+    return blended;
+}
+
+/// The move along its normal that FitSurfelOffsets gives the surfel of cluster c (members
+/// [begin, end), in increasing order), from the unfitted `surfels` of every cluster and
+/// `weightOf(l)`, the detail::BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
+/// a member flagged in creasePoints, or no move within maxPlaneDistance).
+template <class WeightOf>
+float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
+                     const IndexArray &label, const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels,
+                     WeightOf &&weightOf, int c, const int *begin, const int *end, double maxPlaneDistance)
+{
+    // Crease clusters and narrowed blends stay (file header).
+    if (surfels[c].blendScale < 1 || begin == end) return 0.f;
+    if (creasePoints && std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; })) return 0.f;
+    int around[kOffsetNeighbors + 1]; // surfels blended at a point
+    float exponent[kOffsetNeighbors + 1];
+    double sum = 0;
+    int sampled = 0;
+    ForEachOffsetSample(begin, end, [&](int i) {
+        ++sampled;
+        const vcg::Point3f &p = points[i];
+        const int blended = BlendedAroundSample(normals, graph, label, surfels, c, i, around);
+        float smallest = 0; // exponent of the heaviest surfel: the weights are relative to it
+        for (int t = 0; t < blended; ++t) {
+            exponent[t] = weightOf(around[t]).Exponent(surfels[around[t]].position, p);
+            smallest = t == 0 ? exponent[t] : std::min(smallest, exponent[t]);
+        }
+        float weightSum = 0;
+        vcg::Point3f centre(0, 0, 0), normal(0, 0, 0);
+        for (int t = 0; t < blended; ++t) {
+            const float w = std::exp(smallest - exponent[t]);
+            weightSum += w;
+            centre += surfels[around[t]].position * w;
+            normal += surfels[around[t]].normal * w;
+        }
+        const float length = normal.Norm();
+        if (length > 0) sum += (p - centre / weightSum).dot(normal / length);
+    });
+    double move = sum / sampled;
+    if (maxPlaneDistance > 0) {
+        // Members at heights h above the plane stay within the bound for moves in
+        // [max h - bound, min h + bound], which holds 0. With 1 % kept in hand, a member
+        // in the last 1 % may make the move one that brings it back (or, with members in
+        // the last 1 % on both sides, the surfel stays).
+        double lowest = 0, highest = 0;
+        for (const int *m = begin; m != end; ++m) {
+            const double h = (points[*m] - surfels[c].position).dot(surfels[c].normal);
+            lowest = m == begin ? h : std::min(lowest, h);
+            highest = m == begin ? h : std::max(highest, h);
+        }
+        const double room = 0.99 * maxPlaneDistance; // the float position rounds the move
+        const double least = highest - room, most = lowest + room;
+        move = least <= most ? std::max(least, std::min(move, most)) : 0.0;
+    }
+    return float(move);
+}
+
+/// Applies a move from SurfelOffsetOf to a surfel.
+inline void MoveSurfel(Surfel &s, float offset)
+{
+    if (offset == 0) return;
+    s.position += s.normal * offset;
+    s.fitOffset += offset;
+}
+
 /// Moves each surfel along its normal by the mean signed distance of sampled members of its
 /// cluster to the blended plane at them (file header). Surfels of clusters with a point marked
 /// in `creasePoints` (null: none) stay, and so do those whose blend is narrowed (blendScale < 1).
@@ -117,71 +207,15 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
 #pragma omp parallel for schedule(static)
     for (int c = 0; c < count; ++c) weight[c] = detail::BlendWeight(surfels[c]);
     std::vector<float> offset(count, 0.f);
-#pragma omp parallel
-    {
-        int around[kOffsetNeighbors + 1]; // surfels blended at a point
-        float exponent[kOffsetNeighbors + 1];
-#pragma omp for schedule(dynamic, 256)
-        for (int c = 0; c < count; ++c) {
-            // Crease clusters and narrowed blends stay (file header).
-            if (surfels[c].blendScale < 1 || (creasePoints && members.AnyFlagged(c, *creasePoints))) continue;
-            double sum = 0;
-            const int size = members.Size(c), stride = std::max(1, (size + kOffsetSamples - 1) / kOffsetSamples);
-            int sampled = 0;
-            for (int t = 0; t < size; t += stride, ++sampled) {
-                const int i = members.begin(c)[t];
-                const vcg::Point3f &p = points[i];
-                int blended = 1;
-                around[0] = c;
-                const int *q = graph.begin(i), *end = q + std::min<int>(graph.found[i], kOffsetNeighbors);
-                for (; q != end; ++q) {
-                    const int l = clusters.label[*q];
-                    // Thin parts: surfels facing away belong to the other sheet.
-                    if (l >= 0 && std::find(around, around + blended, l) == around + blended &&
-                        surfels[l].normal.dot(normals[i]) > 0)
-                        around[blended++] = l;
-                }
-                float smallest = 0; // exponent of the heaviest surfel: the weights are relative to it
-                for (int t = 0; t < blended; ++t) {
-                    exponent[t] = weight[around[t]].Exponent(surfels[around[t]].position, p);
-                    smallest = t == 0 ? exponent[t] : std::min(smallest, exponent[t]);
-                }
-                float weightSum = 0;
-                vcg::Point3f centre(0, 0, 0), normal(0, 0, 0);
-                for (int t = 0; t < blended; ++t) {
-                    const float w = std::exp(smallest - exponent[t]);
-                    weightSum += w;
-                    centre += surfels[around[t]].position * w;
-                    normal += surfels[around[t]].normal * w;
-                }
-                const float length = normal.Norm();
-                if (length > 0) sum += (p - centre / weightSum).dot(normal / length);
-            }
-            if (sampled == 0) continue; // (an empty cluster)
-            double move = sum / sampled;
-            if (maxPlaneDistance > 0) {
-                // Members at heights h above the plane stay within the bound for moves in
-                // [max h - bound, min h + bound], which holds 0. With 1 % kept in hand, a member
-                // in the last 1 % may make the move one that brings it back (or, with members in
-                // the last 1 % on both sides, the surfel stays).
-                double lowest = 0, highest = 0;
-                for (const int *m = members.begin(c); m != members.end(c); ++m) {
-                    const double h = (points[*m] - surfels[c].position).dot(surfels[c].normal);
-                    lowest = m == members.begin(c) ? h : std::min(lowest, h);
-                    highest = m == members.begin(c) ? h : std::max(highest, h);
-                }
-                const double room = 0.99 * maxPlaneDistance; // the float position rounds the move
-                const double least = highest - room, most = lowest + room;
-                move = least <= most ? std::max(least, std::min(move, most)) : 0.0;
-            }
-            offset[c] = float(move);
-        }
-    }
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int c = 0; c < count; ++c)
+        offset[c] = SurfelOffsetOf(points, normals, graph, clusters.label, creasePoints, surfels,
+                                   [&weight](int l) -> const detail::BlendWeight & { return weight[l]; }, c,
+                                   members.begin(c), members.end(c), maxPlaneDistance);
     SurfelOffsetResult result;
     for (int c = 0; c < count; ++c) {
         if (offset[c] == 0) continue;
-        surfels[c].position += surfels[c].normal * offset[c];
-        surfels[c].fitOffset += offset[c];
+        MoveSurfel(surfels[c], offset[c]);
         ++result.moved;
         result.largest = std::max(result.largest, double(std::abs(offset[c])));
     }

@@ -1,0 +1,135 @@
+// SurfelMaker (surfel_recipe.h): surfels updated where a few clusters changed equal the surfels
+// made whole, for splits, merges and both, with narrowed blends around creases and fitted offsets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include <vcg_ext/gaussphere/surfel_recipe.h>
+
+#include "pipeline_support.h"
+
+using namespace vcg::gaussphere;
+
+namespace {
+
+struct Scene
+{
+    gstest::PointSet s = gstest::CubeSurface(20, true);
+    NeighborGraph graph;
+    Clustering clusters;
+    SurfelRecipe recipe;
+
+    Scene()
+    {
+        ResamplingParams p;
+        p.targetCount = 150;
+        const ResamplingResult r = gstest::Resample(s, p);
+        clusters.label.assign(r.representative.begin(), r.representative.end());
+        clusters.clusterCount = int(r.surfels.size());
+        const PointGrid grid(s.points);
+        AdaptiveNeighborParams neighbors;
+        neighbors.creaseAngle = 45;
+        graph = BuildAdaptiveNeighbors(s.points, s.normals, neighbors, grid);
+        recipe.generation.weightWidth = 0.01 * 2 * std::sqrt(3.0);
+        recipe.creaseBlendScale = 0.65f;
+        recipe.fitOffsets = true;
+        recipe.creasePoints = &graph.crease;
+    }
+};
+
+void ExpectSameSurfels(const std::vector<Surfel> &a, const std::vector<Surfel> &b, const char *what)
+{
+    ASSERT_EQ(a.size(), b.size()) << what;
+    for (size_t c = 0; c < a.size(); ++c) {
+        EXPECT_EQ(a[c].position, b[c].position) << what << " surfel " << c;
+        EXPECT_EQ(a[c].normal, b[c].normal) << what << " surfel " << c;
+        EXPECT_EQ(a[c].majorAxis, b[c].majorAxis) << what << " surfel " << c;
+        EXPECT_EQ(a[c].minorAxis, b[c].minorAxis) << what << " surfel " << c;
+        EXPECT_EQ(a[c].memberCount, b[c].memberCount) << what << " surfel " << c;
+        EXPECT_EQ(a[c].blendScale, b[c].blendScale) << what << " surfel " << c;
+        EXPECT_EQ(a[c].fitOffset, b[c].fitOffset) << what << " surfel " << c;
+    }
+}
+
+std::vector<int> Sorted(std::vector<int> v)
+{
+    std::sort(v.begin(), v.end());
+    return v;
+}
+
+} // namespace
+
+TEST(SurfelRecipe, UpdateEqualsMake)
+{
+    const Scene scene;
+    const SurfelMaker maker(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
+    const SurfelMaker::Set base = maker.Make(scene.clusters);
+    const ClusterMembers members(scene.clusters);
+    const int count = scene.clusters.clusterCount;
+    int narrowed = 0, fitted = 0;
+    for (const Surfel &f : base.fitted) {
+        narrowed += f.blendScale < 1;
+        fitted += f.fitOffset != 0;
+    }
+    ASSERT_GT(narrowed, 0) << "the scene has narrowed blends";
+    ASSERT_GT(fitted, 0) << "and fitted surfels";
+
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> pick(0, count - 1);
+    int splitsChecked = 0, exchangesChecked = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const int c = pick(rng);
+        if (members.Size(c) < 2) continue;
+        // Split c in two by member order: the second half becomes a new cluster...
+        const std::vector<int> all(members.begin(c), members.end(c));
+        const std::vector<int> first(all.begin(), all.begin() + all.size() / 2), second(all.begin() + all.size() / 2, all.end());
+        Clustering split = scene.clusters;
+        for (int i : second) split.label[i] = count;
+        split.clusterCount = count + 1;
+        ExpectSameSurfels(maker.Update(base, scene.clusters, members, split, {c, count}, {first, second}).fitted,
+                          maker.Make(split).fitted, "split");
+        ++splitsChecked;
+        // ... or takes the index of a cluster merged into another.
+        const int keep = pick(rng), gone = pick(rng);
+        if (keep == gone || keep == c || gone == c) continue;
+        Clustering exchanged = scene.clusters;
+        for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchanged.label[*i] = keep;
+        for (int i : second) exchanged.label[i] = gone;
+        std::vector<int> merged(members.begin(keep), members.end(keep));
+        merged.insert(merged.end(), members.begin(gone), members.end(gone));
+        const SurfelMaker::Set update =
+            maker.Update(base, scene.clusters, members, exchanged, {c, gone, keep}, {first, second, Sorted(merged)});
+        const SurfelMaker::Set whole = maker.Make(exchanged);
+        ExpectSameSurfels(update.fitted, whole.fitted, "exchange");
+        ExpectSameSurfels(update.unfitted, whole.unfitted, "exchange, unfitted");
+        ++exchangesChecked;
+    }
+    EXPECT_GT(splitsChecked, 20);
+    EXPECT_GT(exchangesChecked, 10);
+}
+
+// Without a fit or narrowing, the update is the changed clusters' surfels alone.
+TEST(SurfelRecipe, UpdateWithoutAdjustments)
+{
+    Scene scene;
+    scene.recipe.fitOffsets = false;
+    scene.recipe.creaseBlendScale = 1.f;
+    const SurfelMaker maker(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
+    const SurfelMaker::Set base = maker.Make(scene.clusters);
+    const ClusterMembers members(scene.clusters);
+    const int count = scene.clusters.clusterCount;
+    int c = 0;
+    while (members.Size(c) < 4) ++c;
+    const std::vector<int> all(members.begin(c), members.end(c));
+    const std::vector<int> first(all.begin(), all.begin() + 2), second(all.begin() + 2, all.end());
+    Clustering split = scene.clusters;
+    for (int i : second) split.label[i] = count;
+    split.clusterCount = count + 1;
+    const SurfelMaker::Set update = maker.Update(base, scene.clusters, members, split, {c, count}, {first, second});
+    ExpectSameSurfels(update.fitted, maker.Make(split).fitted, "split");
+    for (const Surfel &f : update.fitted) {
+        EXPECT_EQ(f.blendScale, 1.f);
+        EXPECT_EQ(f.fitOffset, 0.f);
+    }
+}

@@ -1,0 +1,141 @@
+// The resampler's surfels of a clustering, made whole or updated where a few clusters changed.
+//
+// A clustering becomes surfels in three steps: one surfel per cluster (GenerateSurfels), narrower
+// blends around creases (NarrowBlendsAroundCreases), offsets fitted to the blend
+// (FitSurfelOffsets). The exchanges of max_error_exchange.h try hundreds of clusterings that
+// differ from the current one in two or three clusters; making every surfel anew for each was
+// most of their time and grew with the input. SurfelMaker::Update redoes only what a change
+// reaches: the surfels of the changed clusters, and the fits of the clusters whose sampled
+// members blend a changed cluster's surfel; the result equals Make's (a test compares them).
+#ifndef VCG_EXT_GAUSSPHERE_SURFEL_RECIPE_H
+#define VCG_EXT_GAUSSPHERE_SURFEL_RECIPE_H
+
+#include <algorithm>
+#include <vector>
+
+#include "adaptive_neighbors.h"
+#include "clustering.h"
+#include "crease_blend.h"
+#include "surfel_generation.h"
+#include "surfel_offset.h"
+
+namespace vcg {
+namespace gaussphere {
+
+struct SurfelRecipe
+{
+    SurfelGenerationParams generation;          ///< blendScale must stay null
+    float creaseBlendScale = 1.f;               ///< NarrowBlendsAroundCreases' scale (1: off)
+    bool fitOffsets = false;                    ///< FitSurfelOffsets (without a plane bound)
+    const FlatVector<char> *creasePoints = nullptr; ///< clusters holding one are not fitted
+};
+
+class SurfelMaker
+{
+public:
+    /// A clustering's surfels before and after the fit (the fit reads the unfitted ones).
+    struct Set
+    {
+        std::vector<Surfel> unfitted, fitted;
+    };
+
+    /// \pre points, unit normals and `graph` as clustered; they outlive the maker.
+    SurfelMaker(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
+                const SurfelRecipe &recipe)
+        : points_(points), normals_(normals), graph_(graph), recipe_(recipe)
+    {
+        // The points whose cluster NarrowBlendsAroundCreases narrows: crease points and their neighbours.
+        if (recipe.creaseBlendScale < 1 && !graph.crease.empty()) {
+            narrowing_.assign(size_t(graph.Size()), 0);
+            for (int i = 0; i < graph.Size(); ++i) {
+                if (!graph.crease[i]) continue;
+                narrowing_[size_t(i)] = 1;
+                for (const int *q = graph.begin(i), *end = q + graph.found[i]; q != end; ++q) narrowing_[size_t(*q)] = 1;
+            }
+        }
+    }
+
+    Set Make(const Clustering &clusters) const
+    {
+        Set s;
+        s.unfitted = GenerateSurfels(points_, normals_, graph_.spacing, clusters, recipe_.generation);
+        NarrowBlendsAroundCreases(graph_, clusters, recipe_.creaseBlendScale, s.unfitted);
+        s.fitted = s.unfitted;
+        if (recipe_.fitOffsets) FitSurfelOffsets(points_, normals_, graph_, clusters, recipe_.creasePoints, s.fitted);
+        return s;
+    }
+
+    /// Make(trial), from base = Make(baseClusters) and baseMembers = ClusterMembers(baseClusters),
+    /// where trial differs from baseClusters only in the members of the clusters `dirty` (an index
+    /// may be one past baseClusters' last, a new cluster); dirtyMembers[j] holds the members of
+    /// dirty[j] in trial, in increasing order.
+    Set Update(const Set &base, const Clustering &baseClusters, const ClusterMembers &baseMembers,
+               const Clustering &trial, const std::vector<int> &dirty,
+               const std::vector<std::vector<int>> &dirtyMembers) const
+    {
+        const int count = trial.clusterCount, baseCount = baseClusters.clusterCount;
+        Set s;
+        s.unfitted = base.unfitted;
+        s.unfitted.resize(size_t(count));
+        std::vector<int> dirtyIndex(size_t(std::max(count, baseCount)), -1);
+        for (size_t j = 0; j < dirty.size(); ++j) {
+            const int c = dirty[j];
+            dirtyIndex[size_t(c)] = int(j);
+            const std::vector<int> &m = dirtyMembers[j];
+            Surfel &surfel = s.unfitted[size_t(c)];
+            surfel = MakeSurfel(points_, normals_, graph_.spacing, m.data(), m.data() + m.size(), recipe_.generation);
+            if (!narrowing_.empty() && m.size() >= 2 &&
+                std::any_of(m.begin(), m.end(), [this](int i) { return narrowing_[size_t(i)] != 0; }))
+                surfel.blendScale = recipe_.creaseBlendScale;
+        }
+        s.fitted = base.fitted;
+        s.fitted.resize(size_t(count));
+        for (int c : dirty) s.fitted[size_t(c)] = s.unfitted[size_t(c)];
+        if (!recipe_.fitOffsets) return s;
+
+        // Clusters to fit again: the changed ones, and those a sampled member of which has among
+        // its blended neighbour slots a point of a changed cluster (before or after the change).
+        auto changed = [&](int point) {
+            const int before = baseClusters.label[point], after = trial.label[point];
+            return (before >= 0 && dirtyIndex[size_t(before)] >= 0) || (after >= 0 && dirtyIndex[size_t(after)] >= 0);
+        };
+        std::vector<int> refit(dirty);
+        for (int c = 0; c < baseCount; ++c) {
+            if (dirtyIndex[size_t(c)] >= 0) continue;
+            bool reached = false;
+            ForEachOffsetSample(baseMembers.begin(c), baseMembers.end(c), [&](int i) {
+                const int *q = graph_.begin(i), *end = q + std::min<int>(graph_.found[i], kOffsetNeighbors);
+                for (; q != end && !reached; ++q) reached = changed(*q);
+            });
+            if (reached) refit.push_back(c);
+        }
+        auto weightOf = [&s](int l) { return detail::BlendWeight(s.unfitted[size_t(l)]); };
+        std::vector<float> offset(refit.size());
+#pragma omp parallel for schedule(dynamic, 16)
+        for (int t = 0; t < int(refit.size()); ++t) {
+            const int c = refit[size_t(t)];
+            const int j = dirtyIndex[size_t(c)];
+            const int *begin = j >= 0 ? dirtyMembers[size_t(j)].data() : baseMembers.begin(c);
+            const int *end = j >= 0 ? begin + dirtyMembers[size_t(j)].size() : baseMembers.end(c);
+            offset[size_t(t)] = SurfelOffsetOf(points_, normals_, graph_, trial.label, recipe_.creasePoints, s.unfitted,
+                                               weightOf, c, begin, end, 0.0);
+        }
+        for (size_t t = 0; t < refit.size(); ++t) {
+            Surfel &surfel = s.fitted[size_t(refit[t])];
+            surfel = s.unfitted[size_t(refit[t])];
+            MoveSurfel(surfel, offset[t]);
+        }
+        return s;
+    }
+
+private:
+    const PointArray &points_, &normals_;
+    const NeighborGraph &graph_;
+    SurfelRecipe recipe_;
+    std::vector<char> narrowing_;
+};
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif
