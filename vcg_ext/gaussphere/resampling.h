@@ -9,7 +9,8 @@
 //   4. one elliptical surfel per cluster                            surfel_generation.h
 //   beyond the paper: an exact size or an error bound              cluster_refinement.h,
 //                                                                   surface_error_bound.h
-//   at an exact size, exchanges of clusters for the largest error  max_error_exchange.h
+//   at an exact size, exchanges of clusters for the largest error  max_error_exchange.h,
+//                                                                   surfel_recipe.h
 //   and surfels fitted to the blended surface                       surfel_offset.h
 //   with narrower blends around creases                             crease_blend.h
 //
