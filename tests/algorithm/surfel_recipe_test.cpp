@@ -74,6 +74,8 @@ TEST(SurfelRecipe, UpdateEqualsMake)
     }
     ASSERT_GT(narrowed, 0) << "the scene has narrowed blends";
     ASSERT_GT(fitted, 0) << "and fitted surfels";
+    ExpectSameSurfels(MakeSurfels(scene.s.points, scene.s.normals, scene.graph, scene.clusters, scene.recipe), base.fitted,
+                      "fitted in place");
 
     std::mt19937 rng(11);
     std::uniform_int_distribution<int> pick(0, count - 1);

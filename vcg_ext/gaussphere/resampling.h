@@ -489,8 +489,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         recipe.creaseBlendScale = param.creaseBlendScale;
         recipe.fitOffsets = param.fitOffsets;
         recipe.creasePoints = normalization.creasePoints;
-        const SurfelMaker maker(points, normals, graph, recipe);
         if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
+            const SurfelMaker maker(points, normals, graph, recipe);
             MaxErrorExchangeParams exchangeParam;
             exchangeParam.maxRounds = param.maxErrorExchanges;
             const MaxErrorExchangeResult exchange = ExchangeForMaxError(
@@ -506,7 +506,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
         } else {
-            result.surfels = maker.Make(clusters).fitted;
+            result.surfels = MakeSurfels(points, normals, graph, clusters, recipe);
         }
         // Read off the surfels: the exchange made many sets, the figures describe the kept one.
         stats.surfelsNarrowedAtCreases = 0;

@@ -30,6 +30,19 @@ struct SurfelRecipe
     const FlatVector<char> *creasePoints = nullptr; ///< clusters holding one are not fitted
 };
 
+/// The surfels of `clusters` by `recipe`, fitted in place (no copy of the unfitted ones: at 20
+/// million points the surfel stage is where the memory peaks).
+inline std::vector<Surfel> MakeSurfels(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
+                                       const Clustering &clusters, const SurfelRecipe &recipe)
+{
+    std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, clusters, recipe.generation);
+    NarrowBlendsAroundCreases(graph, clusters, recipe.creaseBlendScale, surfels);
+    if (recipe.fitOffsets) FitSurfelOffsets(points, normals, graph, clusters, recipe.creasePoints, surfels);
+    return surfels;
+}
+
+/// MakeSurfels, keeping the unfitted surfels beside the fitted ones so that a clustering that
+/// differs in a few clusters can be updated (Update).
 class SurfelMaker
 {
 public:
