@@ -120,8 +120,8 @@ void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &m, RichPara
         "distance from an input point to the surface the surfels blend into, keeping the count (0 = off). "
         "Each exchange splits a cluster at the worst point and merges the most similar pair of neighbouring "
         "clusters elsewhere, and is kept only if the largest distance went down; the log gives it before "
-        "and after. On the benchmark's 16 models at 5 to 30% it lowered that distance by a quarter (median; "
-        "0 to 62%), and the run took 4.8 times as long (median; 1.4 to 10 times). "
+        "and after. On the benchmark's 16 models at 5 to 30% it lowered that distance by 30% (median; "
+        "0 to 62%), and the run took 2.3 times as long (median; 1.2 to 5.2 times). "
         "Not used with a Maximum error, whose bound sets the count."));
     par.addParam(RichFloat("MaxError", 0.0f, "Maximum error (fraction of diagonal)",
         "Optional bound on the distance from every input point to the surface the surfels define, as a "
