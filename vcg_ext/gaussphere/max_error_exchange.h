@@ -92,7 +92,9 @@ public:
     };
 
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
-    void Reset(std::vector<Surfel> surfels)
+    /// `step`, if given, is called between blocks of points (seconds apart at tens of millions of
+    /// points); when it returns false the measure stops and Reset returns false.
+    bool Reset(std::vector<Surfel> surfels, const std::function<bool()> &step = nullptr)
     {
         const int n = int(points_.size());
         distance_.assign(n, 0.0);
@@ -100,10 +102,17 @@ public:
         current_ = std::move(surfels);
         max_ = 0;
         worst_ = -1;
-        if (n == 0 || current_.empty()) return;
-        Project(current_, nullptr, n, distance_.data(), reach_.data());
+        if (n == 0 || current_.empty()) return true;
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current_, metric_);
+        const int block = 1 << 18;
+        for (int start = 0; start < n; start += block) {
+            if (step && !step()) return false;
+            const int count = std::min(block, n - start);
+            Project(surface, nullptr, start, count, distance_.data() + start, reach_.data() + start);
+        }
         for (int i = 0; i < n; ++i) // in point order: the same worst point for any thread count
             if (worst_ < 0 || distance_[i] > max_) { max_ = distance_[i]; worst_ = i; }
+        return true;
     }
 
     /// Measures `surfels` where they differ from the current set (same cluster numbering; extra
@@ -137,7 +146,7 @@ public:
         const int count = int(m.points.size());
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.f);
-        Project(m.surfels, m.points.data(), count, m.distance.data(), m.reach.data());
+        if (count > 0) Project(BlendedSurfaceOf(m.surfels, metric_), m.points.data(), 0, count, m.distance.data(), m.reach.data());
         for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
             if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
@@ -186,18 +195,17 @@ private:
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
     }
 
-    /// Projects the points `which[0, count)` (null: 0..count-1) on the blended surface of
-    /// `surfels`: their distances and reaches (rounded up to floats) into distance[t], reach[t].
-    void Project(const std::vector<Surfel> &surfels, const int *which, int count, double *distance, float *reach) const
+    /// Projects the points `which[0, count)` (null: first .. first + count - 1) on `surface`:
+    /// their distances and reaches (rounded up to floats) into distance[t], reach[t].
+    void Project(const vcg::tri::SurfelSurface &surface, const int *which, int first, int count, double *distance,
+                 float *reach) const
     {
-        if (count == 0) return;
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
 #pragma omp parallel
         {
             vcg::tri::SurfelSurface::Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
             for (int t = 0; t < count; ++t) {
-                const int i = which ? which[t] : t;
+                const int i = which ? which[t] : first + t;
                 const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
                 double pointReach = 0;
                 const auto projection = surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations,
@@ -255,7 +263,10 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         return result;
     }
     SurfelMaker::Set current = maker.Make(clusters);
-    distances.Reset(current.fitted);
+    if (!distances.Reset(current.fitted, goOn)) {
+        surfels = current.fitted;
+        return result;
+    }
     result.maxBefore = distances.Max();
     const double invH2 = 1.0 / (weightWidth * weightWidth);
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among

@@ -506,7 +506,9 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
         } else {
-            result.surfels = MakeSurfels(points, normals, graph, clusters, recipe);
+            result.surfels = MakeSurfels(points, normals, graph, clusters, recipe, [cb]() {
+                detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
+            });
         }
         // Read off the surfels: the exchange made many sets, the figures describe the kept one.
         stats.surfelsNarrowedAtCreases = 0;
