@@ -2,7 +2,7 @@
 //
 //   gsscale generate --points N [--shape S] [--seed S] [--noise X] --out FILE.ply
 //       writes a generated point set (binary PLY, float x y z nx ny nz)
-//   gsscale run --points N [--shape S] [--seed S] [--noise X] [--level L]
+//   gsscale run --points N [--shape S] [--seed S] [--noise X] [--level L] [--target-percent P]
 //       generates in memory, resamples once, prints key=value lines (one measurement)
 //   gsscale bench [--sizes 1000000,5000000,20000000] [--threads 2,1] [--shape S] ...
 //                 --csv FILE --md FILE [--commit TEXT]
@@ -136,6 +136,9 @@ int RunOnce(const Options &o)
     const GeneratorParams gen = GeneratorFrom(o);
     ResamplingParams param; // defaults: level 8
     param.subdivisionLevel = std::stoi(Get(o, "level", std::to_string(param.subdivisionLevel)));
+    // A target size (0: off) runs the level search and the exchanges (max_error_exchange.h) too.
+    const double targetPercent = std::stod(Get(o, "target-percent", "0"));
+    param.targetCount = int(std::lround(targetPercent / 100 * double(gen.count)));
 
     if (Get(o, "allocator", "mmap") == "mmap") UseMmapForLargeBlocks();
     const std::size_t rssStart = ResidentBytes();
@@ -169,6 +172,7 @@ int RunOnce(const Options &o)
     out("normalization_s", s.secondsNormalization);
     out("refinement_s", s.secondsRefinement);
     out("surfels_s", s.secondsSurfels);
+    out("exchanges_s", s.secondsExchanges);
     out("total_s", std::chrono::duration<double>(callEnd - callStart).count());
     out("cpu_s", cpuSeconds);
     out("output", s.outputCount);
@@ -474,7 +478,7 @@ int Bench(const Options &o)
     if (csvPath.empty() || mdPath.empty()) throw std::runtime_error("bench needs --csv FILE and --md FILE");
     // The child gets the generator and resampler options unchanged.
     std::vector<std::string> passOn;
-    for (const char *key : {"shape", "seed", "noise", "order", "coincident", "outlier", "level", "data-dir", "allocator"})
+    for (const char *key : {"shape", "seed", "noise", "order", "coincident", "outlier", "level", "target-percent", "data-dir", "allocator"})
         if (o.count(key)) { passOn.push_back(std::string("--") + key); passOn.push_back(o.at(key)); }
 
     const std::string loadStart = LoadAverage();
