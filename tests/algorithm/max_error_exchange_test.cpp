@@ -92,7 +92,7 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
     local.Reset(r.surfels);
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> pick(0, int(r.surfels.size()) - 1);
-    std::vector<Surfel> changed = r.surfels;
+    std::vector<Surfel> accepted = r.surfels, changed = r.surfels;
     for (int round = 0; round < 5; ++round) {
         // Move one surfel along its normal, narrow another's blend, add a copy of a third.
         Surfel &moved = changed[pick(rng)];
@@ -102,9 +102,10 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
         extra.position += extra.majorAxis * 0.5f;
         changed.push_back(extra);
 
-        BlendedDistances::Measure m = local.Try(changed);
+        BlendedDistances::Measure m = local.Try(accepted, changed);
         EXPECT_LT(m.points.size(), cube.points.size() / 2) << "round " << round << ": the changes are local";
         local.Accept(std::move(m));
+        accepted = changed;
         BlendedDistances full(cube.points, cube.normals, diagonal);
         full.Reset(changed);
         for (int i = 0; i < cube.Size(); ++i)

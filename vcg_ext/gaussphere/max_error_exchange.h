@@ -31,7 +31,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstring>
 #include <functional>
 #include <iterator>
 #include <utility>
@@ -72,7 +71,8 @@ struct MaxErrorExchangeResult
 };
 
 /// Distances of the points to the blended surface of a set of surfels, kept for a changing set:
-/// a new set is measured only at the points whose projection may involve a changed surfel.
+/// a new set is measured only at the points whose projection may involve a changed surfel. The
+/// caller keeps the current set and passes it in (Try, BlendedAt): no second copy here.
 class BlendedDistances
 {
 public:
@@ -83,7 +83,6 @@ public:
     /// A measured surfel set: the distances that differ from the current ones.
     struct Measure
     {
-        std::vector<Surfel> surfels;
         std::vector<int> points;          ///< projected again
         std::vector<double> distance;
         std::vector<float> reach;
@@ -94,16 +93,15 @@ public:
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
     /// `step`, if given, is called between blocks of points (seconds apart at tens of millions of
     /// points); when it returns false the measure stops and Reset returns false.
-    bool Reset(std::vector<Surfel> surfels, const std::function<bool()> &step = nullptr)
+    bool Reset(const std::vector<Surfel> &surfels, const std::function<bool()> &step = nullptr)
     {
         const int n = int(points_.size());
         distance_.assign(n, 0.0);
         reach_.assign(n, 0.f);
-        current_ = std::move(surfels);
         max_ = 0;
         worst_ = -1;
-        if (n == 0 || current_.empty()) return true;
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current_, metric_);
+        if (n == 0 || surfels.empty()) return true;
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
         const int block = 1 << 18;
         for (int start = 0; start < n; start += block) {
             if (step && !step()) return false;
@@ -115,19 +113,18 @@ public:
         return true;
     }
 
-    /// Measures `surfels` where they differ from the current set (same cluster numbering; extra
-    /// surfels count as changed).
-    Measure Try(std::vector<Surfel> surfels) const
+    /// Measures `surfels` where they differ from `current`, the set last measured (Reset, or the
+    /// one whose Measure was accepted); same cluster numbering, extra surfels count as changed.
+    Measure Try(const std::vector<Surfel> &current, const std::vector<Surfel> &surfels) const
     {
         Measure m;
         std::vector<vcg::Point3d> moved; // old and new centres of every surfel that changed
-        for (size_t c = 0; c < std::max(surfels.size(), current_.size()); ++c) {
-            const bool had = c < current_.size(), has = c < surfels.size();
-            if (had && has && Same(current_[c], surfels[c])) continue;
-            if (had) moved.push_back(vcg::Point3d::Construct(current_[c].position));
+        for (size_t c = 0; c < std::max(surfels.size(), current.size()); ++c) {
+            const bool had = c < current.size(), has = c < surfels.size();
+            if (had && has && Same(current[c], surfels[c])) continue;
+            if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
             if (has) moved.push_back(vcg::Point3d::Construct(surfels[c].position));
         }
-        m.surfels = std::move(surfels);
         const int n = int(points_.size());
         double untouchedMax = 0;
         int untouchedWorst = -1;
@@ -146,7 +143,7 @@ public:
         const int count = int(m.points.size());
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.f);
-        if (count > 0) Project(BlendedSurfaceOf(m.surfels, metric_), m.points.data(), 0, count, m.distance.data(), m.reach.data());
+        if (count > 0) Project(BlendedSurfaceOf(surfels, metric_), m.points.data(), 0, count, m.distance.data(), m.reach.data());
         for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
             if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
@@ -159,7 +156,6 @@ public:
             distance_[m.points[t]] = m.distance[t];
             reach_[m.points[t]] = m.reach[t];
         }
-        current_ = std::move(m.surfels);
         max_ = m.max;
         worst_ = m.worst;
     }
@@ -167,20 +163,19 @@ public:
     double Distance(int i) const { return distance_[i]; }
     double Max() const { return max_; }
     int Worst() const { return worst_; }
-    const std::vector<Surfel> &Surfels() const { return current_; }
 
-    /// The surfels (clusters) facing point i's side among the k nearest to the last step of its
-    /// projection (the ones blended there), nearest first (ties by index).
-    std::vector<int> BlendedAt(int i) const
+    /// The surfels (clusters) of `current` facing point i's side among the k nearest to the last
+    /// step of its projection (the ones blended there), nearest first (ties by index).
+    std::vector<int> BlendedAt(int i, const std::vector<Surfel> &current) const
     {
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current_, metric_);
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current, metric_);
         vcg::tri::SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
         std::vector<std::pair<float, int>> nearest;
         for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
             const int c = scratch.queue.getIndex(j);
-            if (current_[c].normal.dot(normals_[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
+            if (current[c].normal.dot(normals_[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
         }
         std::sort(nearest.begin(), nearest.end());
         std::vector<int> blended;
@@ -219,7 +214,6 @@ private:
     const PointArray &points_, &normals_;
     const vcg::tri::SurfelErrorParams metric_;
     double tolerance_;
-    std::vector<Surfel> current_;
     std::vector<double> distance_;
     std::vector<float> reach_; // 4 bytes a point: at 20 million points the exchange's largest array
     double max_ = 0;
@@ -249,7 +243,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     const int count = clusters.clusterCount;
     const bool active = count >= 3 && param.maxRounds > 0 && weightWidth > 0;
     if (!active) {
-        surfels = maker.Make(clusters).fitted;
+        surfels = maker.MakeFitted(clusters);
         return result;
     }
     int round = 0;
@@ -259,12 +253,12 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     };
     BlendedDistances distances(points, normals, diagonal);
     if (!goOn()) {
-        surfels = maker.Make(clusters).fitted;
+        surfels = maker.MakeFitted(clusters);
         return result;
     }
     SurfelMaker::Set current = maker.Make(clusters);
     if (!distances.Reset(current.fitted, goOn)) {
-        surfels = current.fitted;
+        surfels = std::move(current.fitted);
         return result;
     }
     result.maxBefore = distances.Max();
@@ -288,7 +282,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         const ClusterMembers members(clusters);
         // The worst point's cluster first, then those of the surfels blended at it, nearest first.
         std::vector<int> candidates{clusters.label[distances.Worst()]};
-        for (int c : distances.BlendedAt(distances.Worst()))
+        for (int c : distances.BlendedAt(distances.Worst(), current.fitted))
             if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
         bool kept = false;
         int splitsTried = 0;
@@ -311,7 +305,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
             if (!goOn()) break;
             ++result.trials;
             const SurfelMaker::Set splitSurfels = maker.Update(current, clusters, members, split, {c, count}, {firstHalf, secondHalf});
-            if (!(distances.Try(splitSurfels.fitted).max < distances.Max())) continue;
+            if (!(distances.Try(current.fitted, splitSurfels.fitted).max < distances.Max())) continue;
             // With a merge: the second half takes the index of the cluster merged away.
             std::vector<char> excluded = settled;
             excluded[c] = 1;
@@ -331,7 +325,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 ++result.trials;
                 SurfelMaker::Set trialSurfels =
                     maker.Update(current, clusters, members, exchanged, {c, gone, keep}, {firstHalf, secondHalf, merged});
-                BlendedDistances::Measure measure = distances.Try(trialSurfels.fitted);
+                BlendedDistances::Measure measure = distances.Try(current.fitted, trialSurfels.fitted);
                 if (measure.max < distances.Max()) {
                     distances.Accept(std::move(measure));
                     clusters = std::move(exchanged);
@@ -347,7 +341,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         ++result.exchanges;
     }
     result.maxAfter = distances.Max();
-    surfels = distances.Surfels();
+    surfels = std::move(current.fitted);
     return result;
 }
 

@@ -443,10 +443,6 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     SurfelGenerationParams surfelParam;
     surfelParam.weightWidth = weightWidth;
     surfelParam.coverageMargin = param.coverageMargin;
-    auto recordFit = [&stats](const SurfelOffsetResult &fit) {
-        stats.surfelsFitted = fit.moved;
-        stats.largestFitMove = stats.diagonal > 0 ? fit.largest / stats.diagonal : 0.0;
-    };
     if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
         detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(points, normals, clusters, invH2);
@@ -466,7 +462,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
                 [&](std::vector<Surfel> &surfels) {
                     stats.surfelsNarrowedAtCreases = NarrowBlendsAroundCreases(graph, clusters, param.creaseBlendScale, surfels);
                     if (param.fitOffsets)
-                        recordFit(FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, surfels, bound));
+                        FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, surfels, bound);
                 });
             if (surface.cancelled) throw ResamplingCancelled();
             stats.splitsForSurfaceBound = surface.splits;
@@ -511,13 +507,15 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             });
         }
         // Read off the surfels: the exchange made many sets, the figures describe the kept one.
+        // (With maxErrorFraction blend scales below 1 also come from the bound: counted there.)
         stats.surfelsNarrowedAtCreases = 0;
-        for (const Surfel &s : result.surfels) {
-            stats.surfelsNarrowedAtCreases += s.blendScale < 1;
-            stats.surfelsFitted += s.fitOffset != 0;
-            if (stats.diagonal > 0)
-                stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / stats.diagonal);
-        }
+        for (const Surfel &s : result.surfels) stats.surfelsNarrowedAtCreases += s.blendScale < 1;
+    }
+    // Whichever path fitted them, the moves are in the surfels.
+    for (const Surfel &s : result.surfels) {
+        stats.surfelsFitted += s.fitOffset != 0;
+        if (stats.diagonal > 0)
+            stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / stats.diagonal);
     }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)

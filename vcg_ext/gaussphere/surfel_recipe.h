@@ -31,6 +31,16 @@ struct SurfelRecipe
     const FlatVector<char> *creasePoints = nullptr; ///< clusters holding one are not fitted
 };
 
+/// The surfels of `clusters` by `recipe` before the fit: generated, blends narrowed around creases.
+inline std::vector<Surfel> UnfittedSurfels(const PointArray &points, const PointArray &normals,
+                                           const NeighborGraph &graph, const Clustering &clusters,
+                                           const SurfelRecipe &recipe)
+{
+    std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, clusters, recipe.generation);
+    NarrowBlendsAroundCreases(graph, clusters, recipe.creaseBlendScale, surfels);
+    return surfels;
+}
+
 /// The surfels of `clusters` by `recipe`, fitted in place (no copy of the unfitted ones: at 20
 /// million points the surfel stage is where the memory peaks). `beforeFit`, if given, is called
 /// between generation and fit (each takes about a second at 20 million points: a progress report).
@@ -38,8 +48,7 @@ inline std::vector<Surfel> MakeSurfels(const PointArray &points, const PointArra
                                        const Clustering &clusters, const SurfelRecipe &recipe,
                                        const std::function<void()> &beforeFit = nullptr)
 {
-    std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, clusters, recipe.generation);
-    NarrowBlendsAroundCreases(graph, clusters, recipe.creaseBlendScale, surfels);
+    std::vector<Surfel> surfels = UnfittedSurfels(points, normals, graph, clusters, recipe);
     if (recipe.fitOffsets) {
         if (beforeFit) beforeFit();
         FitSurfelOffsets(points, normals, graph, clusters, recipe.creasePoints, surfels);
@@ -74,11 +83,16 @@ public:
         }
     }
 
+    /// MakeSurfels(clusters): the fitted surfels alone.
+    std::vector<Surfel> MakeFitted(const Clustering &clusters) const
+    {
+        return MakeSurfels(points_, normals_, graph_, clusters, recipe_);
+    }
+
     Set Make(const Clustering &clusters) const
     {
         Set s;
-        s.unfitted = GenerateSurfels(points_, normals_, graph_.spacing, clusters, recipe_.generation);
-        NarrowBlendsAroundCreases(graph_, clusters, recipe_.creaseBlendScale, s.unfitted);
+        s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, recipe_);
         s.fitted = s.unfitted;
         if (recipe_.fitOffsets) FitSurfelOffsets(points_, normals_, graph_, clusters, recipe_.creasePoints, s.fitted);
         return s;
