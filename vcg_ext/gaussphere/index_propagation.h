@@ -128,7 +128,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
             // The owner first: the labels of other triangles' points are other threads' to write.
             if (owner[t] != self || label[seed] != unlabelled) continue;
             // Provisional label: the seed's position, unique per cluster; numbered below.
-            label[seed] = position;
+            __atomic_store_n(label + seed, position, __ATOMIC_RELAXED);
             pending.clear();
             size_t head = 0;
             pending.push_back({seed, 0});
@@ -138,12 +138,27 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                 else v = pending[head++];
                 if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
                 const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
-                for (const int *q = graph.begin(v.point); q != graph.end(v.point); ++q) {
+                // Without branches: every neighbour is written past the end and the end moves
+                // past it only if it joins (whether one does is unpredictable; igea: 11 -> 7 ms).
+                // The joined are labelled after the scan (neighbours are distinct: the same
+                // joins), and their neighbour lists, visited soon, fetched ahead. A neighbour of
+                // another thread's triangle has its label read too, though never used: labels
+                // are read and written as relaxed atomics (plain moves on x86).
+                const int *q = graph.begin(v.point), *qEnd = graph.end(v.point);
+                const size_t before = pending.size();
+                pending.resize(before + size_t(qEnd - q));
+                Visit *next = pending.data() + before;
+                for (; q != qEnd; ++q) {
                     const int j = *q;
-                    if (triangle[j] != t || label[j] != unlabelled) continue;
-                    if ((normals[j] - ref).SquaredNorm() > maxChord2) continue;
-                    label[j] = position;
-                    pending.push_back({j, v.depth + 1});
+                    const bool joins = (triangle[j] == t) & (__atomic_load_n(label + j, __ATOMIC_RELAXED) == unlabelled) &
+                                       ((normals[j] - ref).SquaredNorm() <= maxChord2);
+                    *next = {j, v.depth + 1};
+                    next += joins;
+                }
+                pending.resize(size_t(next - pending.data()));
+                for (size_t e = before; e < pending.size(); ++e) {
+                    __atomic_store_n(label + pending[e].point, position, __ATOMIC_RELAXED);
+                    __builtin_prefetch(graph.begin(pending[e].point));
                 }
             }
         }
