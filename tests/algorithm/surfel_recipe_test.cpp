@@ -89,7 +89,7 @@ TEST(SurfelRecipe, UpdateEqualsMake)
         Clustering split = scene.clusters;
         for (int i : second) split.label[i] = count;
         split.clusterCount = count + 1;
-        ExpectSameSurfels(maker.Update(base, scene.clusters, members, split, {c, count}, {first, second}).fitted,
+        ExpectSameSurfels(maker.Update(base, members, split, {c, count}, {first, second}).fitted,
                           maker.Make(split).fitted, "split");
         ++splitsChecked;
         // ... or takes the index of a cluster merged into another.
@@ -101,7 +101,7 @@ TEST(SurfelRecipe, UpdateEqualsMake)
         std::vector<int> merged(members.begin(keep), members.end(keep));
         merged.insert(merged.end(), members.begin(gone), members.end(gone));
         const SurfelMaker::Set update =
-            maker.Update(base, scene.clusters, members, exchanged, {c, gone, keep}, {first, second, Sorted(merged)});
+            maker.Update(base, members, exchanged, {c, gone, keep}, {first, second, Sorted(merged)});
         const SurfelMaker::Set whole = maker.Make(exchanged);
         ExpectSameSurfels(update.fitted, whole.fitted, "exchange");
         ExpectSameSurfels(update.unfitted, whole.unfitted, "exchange, unfitted");
@@ -128,7 +128,7 @@ TEST(SurfelRecipe, UpdateWithoutAdjustments)
     Clustering split = scene.clusters;
     for (int i : second) split.label[i] = count;
     split.clusterCount = count + 1;
-    const SurfelMaker::Set update = maker.Update(base, scene.clusters, members, split, {c, count}, {first, second});
+    const SurfelMaker::Set update = maker.Update(base, members, split, {c, count}, {first, second});
     ExpectSameSurfels(update.fitted, maker.Make(split).fitted, "split");
     for (const Surfel &f : update.fitted) {
         EXPECT_EQ(f.blendScale, 1.f);

@@ -28,6 +28,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -57,6 +59,9 @@ inline int *SplitMembers(const PointArray &points, const PointArray &normals, in
     return nullptr;
 }
 
+/// What SplitToCount and MergeToCount return when their `progress` stopped them.
+constexpr int kRefinementCancelled = -1;
+
 class ClusterRefiner
 {
 public:
@@ -73,8 +78,10 @@ public:
     int Count() const { return int(range_.size()); }
 
     /// Splits the clusters with the largest L2,1 error until there are `target` clusters
-    /// (or no cluster can be split). Returns the number of splits.
-    int SplitToCount(int target)
+    /// (or no cluster can be split). Returns the number of splits. `progress(fraction)`, if
+    /// given, is called every few thousand splits; when it returns false splitting stops and
+    /// SplitToCount returns kRefinementCancelled.
+    int SplitToCount(int target, const std::function<bool(double)> &progress = nullptr)
     {
         typedef std::pair<std::pair<double, int>, int> Entry; // ((error, size), cluster)
         std::priority_queue<Entry> queue;
@@ -83,7 +90,9 @@ public:
         };
         for (int c = 0; c < Count(); ++c) push(c);
         int splits = 0;
+        const int needed = std::max(1, target - Count());
         while (Count() < target && !queue.empty()) {
+            if (progress && splits % 4096 == 0 && !progress(double(splits) / needed)) return kRefinementCancelled;
             const int c = queue.top().second;
             queue.pop();
             const int added = Split(c);
@@ -178,8 +187,10 @@ constexpr double kMergeSpreadWeight = 0.1;
 class MergeCostModel
 {
 public:
-    /// \pre clusters' labels in [-1, clusterCount); weightWidth = h of the surfel normal weights.
-    MergeCostModel(const PointArray &points, const PointArray &normals, const Clustering &clusters, double weightWidth)
+    /// \pre clusters' labels in [-1, clusterCount), `members` = ClusterMembers(clusters);
+    ///      weightWidth = h of the surfel normal weights.
+    MergeCostModel(const PointArray &points, const PointArray &normals, const Clustering &clusters,
+                   const ClusterMembers &members, double weightWidth)
         : sums_(clusters.clusterCount), invH2_(1.0 / (weightWidth * weightWidth))
     {
         Eigen::Vector3d origin = Eigen::Vector3d::Zero();
@@ -187,15 +198,17 @@ public:
         for (size_t i = 0; i < clusters.label.size(); ++i)
             if (clusters.label[i] >= 0) { origin += detail::ToEigen(points[i]); ++clustered; }
         origin /= std::max(1.0, clustered);
-        for (size_t i = 0; i < clusters.label.size(); ++i) {
-            const int l = clusters.label[i];
-            if (l < 0) continue;
-            const Eigen::Vector3d p = detail::ToEigen(points[i]) - origin;
-            Sums &s = sums_[l];
-            s.size += 1;
-            s.normalSum += detail::ToEigen(normals[i]);
-            s.positionSum += p;
-            s.moment += p * p.transpose();
+        // Each cluster's sums over its members in point order, whatever the thread count.
+#pragma omp parallel for schedule(dynamic, 1024)
+        for (int c = 0; c < clusters.clusterCount; ++c) {
+            Sums &s = sums_[size_t(c)];
+            for (const int *i = members.begin(c); i != members.end(c); ++i) {
+                const Eigen::Vector3d p = detail::ToEigen(points[*i]) - origin;
+                s.size += 1;
+                s.normalSum += detail::ToEigen(normals[*i]);
+                s.positionSum += p;
+                s.moment += p * p.transpose();
+            }
         }
     }
 
@@ -248,33 +261,76 @@ private:
 };
 
 /// Per cluster, the other clusters linked to it by `graph` (every neighbour found, not only the
-/// cone), sorted, without repeats.
-inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph, const Clustering &clusters)
+/// cone), sorted, without repeats. `members` = ClusterMembers(clusters).
+inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph, const Clustering &clusters,
+                                                      const ClusterMembers &members)
 {
     std::vector<std::vector<int>> adjacent(clusters.clusterCount);
-    for (int i = 0; i < graph.Size(); ++i) {
-        const int a = clusters.label[i];
-        if (a < 0) continue;
-        const int *slot = graph.adjacency.data() + size_t(i) * graph.stride;
-        for (int t = 0; t < graph.found[i]; ++t) {
-            const int b = clusters.label[slot[t]];
-            if (b >= 0 && b != a) adjacent[a].push_back(b);
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (int a = 0; a < clusters.clusterCount; ++a) {
+        std::vector<int> &list = adjacent[size_t(a)];
+        for (const int *i = members.begin(a); i != members.end(a); ++i) {
+            const int *slot = graph.adjacency.data() + size_t(*i) * graph.stride;
+            for (int t = 0; t < graph.found[*i]; ++t) {
+                const int b = clusters.label[slot[t]];
+                if (b >= 0 && b != a) list.push_back(b);
+            }
         }
+        SortUnique(list);
+        list.shrink_to_fit(); // ~60 % are repeats: at 20 M points the lists' slack is hundreds of MB
     }
-    for (auto &list : adjacent) SortUnique(list);
     return adjacent;
+}
+
+
+/// Two clusters linked by the neighbour graph, a < b, and what merging them costs.
+struct MergePair
+{
+    double cost;
+    int a, b;
+    bool operator<(const MergePair &o) const { return cost < o.cost || (cost == o.cost && (a < o.a || (a == o.a && b < o.b))); }
+};
+
+/// Every pair of `adjacent` clusters (ClusterAdjacency) with its cost by `model`, ordered by a,
+/// then b; the costs computed in parallel.
+inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent)
+{
+    const int count = int(adjacent.size());
+    std::vector<size_t> start(size_t(count) + 1, 0); // first pair of each cluster a
+    for (int a = 0; a < count; ++a) {
+        const std::vector<int> &list = adjacent[size_t(a)];
+        start[size_t(a) + 1] = start[size_t(a)] + size_t(list.end() - std::upper_bound(list.begin(), list.end(), a));
+    }
+    std::vector<MergePair> pairs(start.back());
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (int a = 0; a < count; ++a) {
+        const std::vector<int> &list = adjacent[size_t(a)];
+        size_t slot = start[size_t(a)];
+        for (auto b = std::upper_bound(list.begin(), list.end(), a); b != list.end(); ++b)
+            pairs[slot++] = MergePair{model.Cost(a, *b), a, *b};
+    }
+    return pairs;
 }
 
 /// Merges neighbouring clusters, cheapest first (MergeCostModel), until `target` remain (or no
 /// two clusters are linked by `graph`, using every neighbour found, not only the cone).
 /// Returns the number of merges; clusters are compacted afterwards.
+/// `progress(fraction)`, if given, is called now and then from the calling thread (every few
+/// thousand merges: at 20 million points merging takes seconds); when it returns false merging
+/// stops and MergeToCount returns kRefinementCancelled, the clusters left unspecified.
 inline int MergeToCount(const PointArray &points, const PointArray &normals,
-                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters)
+                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters,
+                        const std::function<bool(double)> &progress = nullptr)
 {
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
-    MergeCostModel model(points, normals, clusters, weightWidth);
-    std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
+    const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
+    std::unique_ptr<const ClusterMembers> members(new ClusterMembers(clusters)); // freed before merging
+    std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters, *members);
+    if (!goOn(0.1)) return kRefinementCancelled;
+    MergeCostModel model(points, normals, clusters, *members, weightWidth);
+    members.reset();
+    if (!goOn(0.2)) return kRefinementCancelled;
     std::vector<int> version(count, 0);
     std::vector<int> parent(count);
     for (int k = 0; k < count; ++k) parent[k] = k;
@@ -283,12 +339,16 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
         return k;
     };
     struct Candidate { double cost; int a, b, versionA, versionB; bool operator<(const Candidate &o) const { return cost > o.cost || (cost == o.cost && (a > o.a || (a == o.a && b > o.b))); } };
-    std::priority_queue<Candidate> queue;
-    for (int a = 0; a < count; ++a)
-        for (int b : adjacent[a])
-            if (a < b) queue.push({model.Cost(a, b), a, b, 0, 0});
+    std::priority_queue<Candidate> queue = [&]() { // made a heap in linear time
+        std::vector<Candidate> initial;
+        for (const MergePair &p : LinkedPairs(model, adjacent)) initial.push_back({p.cost, p.a, p.b, 0, 0});
+        return std::priority_queue<Candidate>(std::less<Candidate>(), std::move(initial));
+    }();
+    if (!goOn(0.3)) return kRefinementCancelled;
+    const int needed = count - target;
     int remaining = count, merges = 0;
     while (remaining > target && !queue.empty()) {
+        if (merges % 4096 == 0 && !goOn(0.3 + 0.7 * merges / needed)) return kRefinementCancelled;
         const Candidate top = queue.top();
         queue.pop();
         if (root(top.a) != top.a || root(top.b) != top.b || version[top.a] != top.versionA ||

@@ -33,6 +33,7 @@
 #include <limits>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,12 @@ struct MaxErrorExchangeResult
 /// Distances of the points to the blended surface of a set of surfels, kept for a changing set:
 /// a new set is measured only at the points whose projection may involve a changed surfel. The
 /// caller keeps the current set and passes it in (Try, BlendedAt): no second copy here.
+///
+/// No surface of every surfel is made after Reset: a projection involves only the surfels within
+/// its reach (SurfelSurface::Project), so a point is projected on a surface of the surfels near it,
+/// found through the tree of the set Reset measured (the unchanged ones sit where they sat then)
+/// and the list of those changed since. At 100,000 surfels a whole surface took 70 ms, most of a
+/// trial; at 2 million, seconds.
 class BlendedDistances
 {
 public:
@@ -88,6 +95,7 @@ public:
         std::vector<float> reach;
         double max = 0;
         int worst = -1;
+        std::vector<int> changed;         ///< surfels that differ from the current set (ascending)
     };
 
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
@@ -100,13 +108,15 @@ public:
         reach_.assign(n, 0.f);
         max_ = 0;
         worst_ = -1;
+        measured_.reset();
+        changedSinceReset_.clear();
         if (n == 0 || surfels.empty()) return true;
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
-        const int block = 1 << 18;
+        measured_.reset(new vcg::tri::SurfelSurface(BlendedSurfaceOf(surfels, metric_)));
+        const int block = 1 << 16;
         for (int start = 0; start < n; start += block) {
             if (step && !step()) return false;
             const int count = std::min(block, n - start);
-            Project(surface, nullptr, start, count, distance_.data() + start, reach_.data() + start);
+            Project(*measured_, nullptr, start, count, distance_.data() + start, reach_.data() + start);
         }
         for (int i = 0; i < n; ++i) // in point order: the same worst point for any thread count
             if (worst_ < 0 || distance_[i] > max_) { max_ = distance_[i]; worst_ = i; }
@@ -124,26 +134,57 @@ public:
             if (had && has && Same(current[c], surfels[c])) continue;
             if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
             if (has) moved.push_back(vcg::Point3d::Construct(surfels[c].position));
+            m.changed.push_back(int(c));
         }
         const int n = int(points_.size());
         double untouchedMax = 0;
-        int untouchedWorst = -1;
+        int untouchedWorst = -1; // the first point of the largest distance: the same for any thread count
         std::vector<char> affected(n, 0);
-#pragma omp parallel for schedule(static)
-        for (int i = 0; i < n; ++i) {
-            const vcg::Point3d p = vcg::Point3d::Construct(points_[i]);
-            const double r2 = double(reach_[i]) * reach_[i];
-            for (const vcg::Point3d &c : moved)
-                if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
+#pragma omp parallel
+        {
+            double localMax = 0;
+            int localWorst = -1;
+#pragma omp for schedule(static) nowait
+            for (int i = 0; i < n; ++i) {
+                const vcg::Point3d p = vcg::Point3d::Construct(points_[i]);
+                const double r2 = double(reach_[i]) * reach_[i];
+                for (const vcg::Point3d &c : moved)
+                    if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
+                if (!affected[i] && (localWorst < 0 || distance_[i] > localMax)) { localMax = distance_[i]; localWorst = i; }
+            }
+#pragma omp critical
+            if (localWorst >= 0 && (untouchedWorst < 0 || localMax > untouchedMax ||
+                                    (localMax == untouchedMax && localWorst < untouchedWorst))) {
+                untouchedMax = localMax;
+                untouchedWorst = localWorst;
+            }
         }
-        for (int i = 0; i < n; ++i) {
+        for (int i = 0; i < n; ++i)
             if (affected[i]) m.points.push_back(i);
-            else if (distance_[i] > untouchedMax || untouchedWorst < 0) { untouchedMax = distance_[i]; untouchedWorst = i; }
-        }
         const int count = int(m.points.size());
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.f);
-        if (count > 0) Project(BlendedSurfaceOf(surfels, metric_), m.points.data(), 0, count, m.distance.data(), m.reach.data());
+        if (count > 0) {
+            // Twice the old reaches: the new projections mostly stay within that (checked).
+            double radius = 0;
+            for (int i : m.points) radius = std::max(radius, 2.0 * reach_[i]);
+            std::vector<int> fresh; // surfels not where the tree has them
+            std::set_union(m.changed.begin(), m.changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
+                           std::back_inserter(fresh));
+            std::vector<int> local;
+            Project(LocalSurface(surfels, fresh, m.points, radius, local), m.points.data(), 0, count,
+                    m.distance.data(), m.reach.data());
+            std::vector<int> beyond; // points whose new projection reached farther: on every surfel
+            for (int t = 0; t < count; ++t)
+                if (!(m.reach[t] <= radius)) beyond.push_back(m.points[t]);
+            if (!beyond.empty()) {
+                std::vector<double> distance(beyond.size());
+                std::vector<float> reach(beyond.size());
+                Project(BlendedSurfaceOf(surfels, metric_), beyond.data(), 0, int(beyond.size()), distance.data(), reach.data());
+                for (size_t b = 0, t = 0; b < beyond.size(); ++t)
+                    if (m.points[t] == beyond[b]) { m.distance[t] = distance[b]; m.reach[t] = reach[b]; ++b; }
+            }
+        }
         for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
             if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
@@ -158,6 +199,10 @@ public:
         }
         max_ = m.max;
         worst_ = m.worst;
+        std::vector<int> changed;
+        std::set_union(m.changed.begin(), m.changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
+                       std::back_inserter(changed));
+        changedSinceReset_.swap(changed);
     }
 
     double Distance(int i) const { return distance_[i]; }
@@ -168,13 +213,15 @@ public:
     /// step of its projection (the ones blended there), nearest first (ties by index).
     std::vector<int> BlendedAt(int i, const std::vector<Surfel> &current) const
     {
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(current, metric_);
+        std::vector<int> local;
+        const std::vector<int> point{i};
+        const vcg::tri::SurfelSurface surface = LocalSurface(current, changedSinceReset_, point, 2.0 * reach_[i], local);
         vcg::tri::SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
         std::vector<std::pair<float, int>> nearest;
         for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
-            const int c = scratch.queue.getIndex(j);
+            const int c = local[size_t(scratch.queue.getIndex(j))];
             if (current[c].normal.dot(normals_[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
         }
         std::sort(nearest.begin(), nearest.end());
@@ -188,6 +235,39 @@ private:
     {
         return a.position == b.position && a.normal == b.normal && a.majorAxis == b.majorAxis &&
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
+    }
+
+    /// A surface of the surfels of `surfels` that projections of `points` reaching no farther than
+    /// `radius` involve, `local` receiving its surfels' indices in `surfels`: those the tree of the
+    /// measured set finds within `radius` of a point, unless listed in `fresh` (ascending: the
+    /// surfels that differ from that set), and every one of `fresh`. Blended with the floor on the
+    /// sizes of the whole set (MakeEllipseSurfelSurface). With no finite radius, every surfel.
+    vcg::tri::SurfelSurface LocalSurface(const std::vector<Surfel> &surfels, const std::vector<int> &fresh,
+                                         const std::vector<int> &points, double radius, std::vector<int> &local) const
+    {
+        local.clear();
+        if (!std::isfinite(radius) || !measured_) {
+            for (int c = 0; c < int(surfels.size()); ++c) local.push_back(c);
+            return BlendedSurfaceOf(surfels, metric_);
+        }
+        for (int c : fresh)
+            if (c < int(surfels.size())) local.push_back(c);
+        std::vector<unsigned> near;
+        std::vector<float> scratch;
+        for (int i : points) {
+            const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
+            near.clear();
+            scratch.clear();
+            // Widened by the single-precision rounding of the tree's distances.
+            measured_->SurfelsWithin(q, radius * (1 + 1e-5) + 1e-5 * q.Norm(), near, scratch);
+            for (unsigned c : near)
+                if (c < surfels.size() && !std::binary_search(fresh.begin(), fresh.end(), int(c))) local.push_back(int(c));
+        }
+        SortUnique(local);
+        vcg::Box3d box;
+        for (const Surfel &s : surfels) box.Add(vcg::Point3d::Construct(s.position));
+        return BlendedSurfaceOf(surfels, local.data(), local.size(), metric_,
+                                vcg::tri::surfel_error_detail::SmallestSurfelSize(box));
     }
 
     /// Projects the points `which[0, count)` (null: first .. first + count - 1) on `surface`:
@@ -216,8 +296,60 @@ private:
     double tolerance_;
     std::vector<double> distance_;
     std::vector<float> reach_; // 4 bytes a point: at 20 million points the exchange's largest array
+    std::unique_ptr<vcg::tri::SurfelSurface> measured_; // of the set Reset measured
+    std::vector<int> changedSinceReset_;                // surfels of the current set not as measured_ has them
     double max_ = 0;
     int worst_ = -1;
+};
+
+/// Merge pairs cheapest first, sorted as they are read: the exchange reads a few hundred of them,
+/// cluster adjacency gives millions at 20 million points (seconds of sorting, without a report).
+class CheapestFirst
+{
+public:
+    CheapestFirst() = default;
+    explicit CheapestFirst(std::vector<MergePair> pairs) : pairs_(std::move(pairs)) {}
+    bool Empty() const { return pairs_.empty(); }
+    /// The i-th cheapest pair, or null past the last.
+    const MergePair *At(size_t i)
+    {
+        if (i >= pairs_.size()) return nullptr;
+        if (i >= sorted_) { // the next cheapest ones, at least as many as are sorted already
+            const size_t end = std::min(pairs_.size(), std::max(i + 1, 2 * sorted_ + 1024));
+            std::nth_element(pairs_.begin() + sorted_, pairs_.begin() + (end - 1), pairs_.end());
+            std::sort(pairs_.begin() + sorted_, pairs_.begin() + end);
+            sorted_ = end;
+        }
+        return &pairs_[i];
+    }
+
+private:
+    std::vector<MergePair> pairs_;
+    size_t sorted_ = 0;
+};
+
+/// Labels of a clustering changed for a trial, with what they were: Undo() restores them and the
+/// cluster count.
+class LabelChange
+{
+public:
+    explicit LabelChange(Clustering &clusters) : clusters_(clusters), count_(clusters.clusterCount) {}
+    void Set(int point, int label)
+    {
+        before_.push_back({point, clusters_.label[point]});
+        clusters_.label[point] = label;
+    }
+    void Undo()
+    {
+        for (auto e = before_.rbegin(); e != before_.rend(); ++e) clusters_.label[e->first] = e->second;
+        before_.clear();
+        clusters_.clusterCount = count_;
+    }
+
+private:
+    Clustering &clusters_;
+    int count_;
+    std::vector<std::pair<int, int>> before_;
 };
 
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
@@ -256,12 +388,15 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         surfels = maker.MakeFitted(clusters);
         return result;
     }
-    SurfelMaker::Set current = maker.Make(clusters);
-    if (!distances.Reset(current.fitted, goOn)) {
+    SurfelMaker::Set current = maker.Make(clusters, goOn);
+    if (!goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);
         return result;
     }
     result.maxBefore = distances.Max();
+    // A largest distance lower by less than this is the same: projections summed in another order
+    // (a trial's surface holds the surfels near the points it projects) differ in the last bits.
+    const double rounding = 1e-9 * diagonal;
     const double invH2 = 1.0 / (weightWidth * weightWidth);
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
     // the merges tried with one split, are the clusters of a merge that failed (twirl at 5 %: the
@@ -269,16 +404,19 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // instead of 0.054). The pairs between the other clusters keep their links and costs, so
     // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
     std::vector<char> settled(count, 0);
-    std::vector<std::pair<double, std::pair<int, int>>> pairs;
-    if (distances.Max() > 0) {
-        const MergeCostModel model(points, normals, clusters, weightWidth);
-        const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters);
-        for (int a = 0; a < count; ++a)
-            for (int b : adjacent[a])
-                if (a < b) pairs.push_back({model.Cost(a, b), {a, b}});
-        std::sort(pairs.begin(), pairs.end());
+    CheapestFirst pairs;
+    if (distances.Max() > 0 && goOn()) { // reports between the steps: each takes seconds at 20 million points
+        const ClusterMembers members(clusters);
+        const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters, members);
+        if (goOn()) {
+            const MergeCostModel model(points, normals, clusters, members, weightWidth);
+            if (goOn()) pairs = CheapestFirst(LinkedPairs(model, adjacent));
+        }
     }
-    for (; round < param.maxRounds && !pairs.empty() && distances.Max() > 0; ++round) {
+    // One surfel set for every trial: its buffers (two surfels per cluster) are filled anew, not
+    // allocated anew (fresh pages cost more than the copy on a virtual machine).
+    SurfelMaker::Set trial;
+    for (; round < param.maxRounds && !pairs.Empty() && distances.Max() > 0 && !result.cancelled; ++round) {
         const ClusterMembers members(clusters);
         // The worst point's cluster first, then those of the surfels blended at it, nearest first.
         std::vector<int> candidates{clusters.label[distances.Worst()]};
@@ -298,42 +436,43 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
             std::sort(secondHalf.begin(), secondHalf.end());
             // The split alone, its second half as an extra cluster: if that does not lower the
             // largest distance, a merge elsewhere is not tried (it seldom helps where the split
-            // did not).
-            Clustering split = clusters;
-            for (int i : secondHalf) split.label[i] = count;
-            split.clusterCount = count + 1;
+            // did not). Trials change the labels in place and undo the change (no copy of them).
             if (!goOn()) break;
             ++result.trials;
-            const SurfelMaker::Set splitSurfels = maker.Update(current, clusters, members, split, {c, count}, {firstHalf, secondHalf});
-            if (!(distances.Try(current.fitted, splitSurfels.fitted).max < distances.Max())) continue;
+            LabelChange split(clusters);
+            for (int i : secondHalf) split.Set(i, count);
+            clusters.clusterCount = count + 1;
+            maker.Update(current, members, clusters, {c, count}, {firstHalf, secondHalf}, trial);
+            const bool splitHelps = distances.Try(current.fitted, trial.fitted).max < distances.Max() - rounding;
+            split.Undo();
+            if (!splitHelps) continue;
             // With a merge: the second half takes the index of the cluster merged away.
             std::vector<char> excluded = settled;
             excluded[c] = 1;
             int merges = 0;
-            for (const auto &pair : pairs) {
+            for (size_t p = 0; const MergePair *pair = pairs.At(p); ++p) {
                 if (merges >= param.mergeCandidates) break;
-                const int keep = pair.second.first, gone = pair.second.second;
+                const int keep = pair->a, gone = pair->b;
                 if (excluded[keep] || excluded[gone]) continue;
                 ++merges;
-                Clustering exchanged = clusters;
-                for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchanged.label[*i] = keep;
-                for (int i : secondHalf) exchanged.label[i] = gone;
                 std::vector<int> merged;
                 std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
                            std::back_inserter(merged));
                 if (!goOn()) break;
                 ++result.trials;
-                SurfelMaker::Set trialSurfels =
-                    maker.Update(current, clusters, members, exchanged, {c, gone, keep}, {firstHalf, secondHalf, merged});
-                BlendedDistances::Measure measure = distances.Try(current.fitted, trialSurfels.fitted);
-                if (measure.max < distances.Max()) {
+                LabelChange exchange(clusters);
+                for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchange.Set(*i, keep);
+                for (int i : secondHalf) exchange.Set(i, gone);
+                maker.Update(current, members, clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, trial);
+                BlendedDistances::Measure measure = distances.Try(current.fitted, trial.fitted);
+                if (measure.max < distances.Max() - rounding) {
                     distances.Accept(std::move(measure));
-                    clusters = std::move(exchanged);
-                    current = std::move(trialSurfels);
+                    std::swap(current, trial); // the old set's buffers serve the next trials
                     settled[c] = settled[keep] = settled[gone] = 1;
                     kept = true;
                     break;
                 }
+                exchange.Undo();
                 excluded[keep] = excluded[gone] = 1;
             }
         }

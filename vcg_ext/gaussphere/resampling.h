@@ -448,7 +448,12 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         ClusterRefiner refiner(points, normals, clusters, invH2);
         const double bound = param.maxErrorFraction * stats.diagonal;
         if (param.maxErrorFraction > 0) stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
-        if (param.targetCount > 0) stats.splitsForTarget = refiner.SplitToCount(param.targetCount);
+        if (param.targetCount > 0) {
+            stats.splitsForTarget = refiner.SplitToCount(param.targetCount, [cb](double done) {
+                return cb == nullptr || cb(80 + int(9 * done), "Gaussian sphere resampling: splitting clusters");
+            });
+            if (stats.splitsForTarget == kRefinementCancelled) throw ResamplingCancelled();
+        }
         if (param.maxErrorFraction > 0) {
             // Last, so that its figures describe the final clusters; the target's splits may
             // have moved a half's plane away from a member: the own planes are checked again.
@@ -473,8 +478,14 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             result.surfels = std::move(surface.surfels);
         }
     }
-    if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0)
-        stats.mergesForTarget = MergeToCount(points, normals, graph, weightWidth, param.targetCount, clusters);
+    if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0) {
+        stats.mergesForTarget = MergeToCount(points, normals, graph, weightWidth, param.targetCount, clusters,
+                                             [cb](double done) {
+                                                 return cb == nullptr ||
+                                                        cb(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
+                                             });
+        if (stats.mergesForTarget == kRefinementCancelled) throw ResamplingCancelled();
+    }
     stats.secondsRefinement = timer.Lap();
 
     // 4. Surfels.

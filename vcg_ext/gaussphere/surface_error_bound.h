@@ -44,22 +44,32 @@ namespace gaussphere {
 /// bench/, 1/8 on all 16).
 constexpr float kMinBlendScale = 0.125f;
 
-/// The blended surface of `surfels` as vcg_ext/surfel_error defines it (their ellipses and blend
-/// scales), for projections with `metric`'s parameters.
-/// \pre surfels non-empty, as GenerateSurfels makes them.
+/// The blended surface of the surfels `which[0, count)` of `surfels` (null: the first count) as
+/// vcg_ext/surfel_error defines it (their ellipses and blend scales), for projections with
+/// `metric`'s parameters; `smallestSize` > 0 replaces the floor on their sizes taken from their box
+/// (MakeEllipseSurfelSurface), so that a part of a set blends as in the whole set.
+/// \pre count > 0, surfels as GenerateSurfels makes them.
+inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels, const int *which, size_t count,
+                                                const vcg::tri::SurfelErrorParams &metric, double smallestSize = 0)
+{
+    std::vector<vcg::Point3f> centers(count), normals(count), major(count), minor(count);
+    std::vector<float> blendScale(count);
+    for (size_t t = 0; t < count; ++t) {
+        const Surfel &s = surfels[which ? size_t(which[t]) : t];
+        centers[t] = s.position;
+        normals[t] = s.normal;
+        major[t] = s.majorAxis;
+        minor[t] = s.minorAxis;
+        blendScale[t] = s.blendScale;
+    }
+    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, metric, &blendScale, smallestSize);
+}
+
+/// The blended surface of all of `surfels`.
 inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels,
                                                 const vcg::tri::SurfelErrorParams &metric = vcg::tri::SurfelErrorParams())
 {
-    std::vector<vcg::Point3f> centers, normals, major, minor;
-    std::vector<float> blendScale;
-    for (const Surfel &s : surfels) {
-        centers.push_back(s.position);
-        normals.push_back(s.normal);
-        major.push_back(s.majorAxis);
-        minor.push_back(s.minorAxis);
-        blendScale.push_back(s.blendScale);
-    }
-    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, metric, &blendScale);
+    return BlendedSurfaceOf(surfels, nullptr, surfels.size(), metric);
 }
 
 struct SurfaceErrorBoundResult

@@ -89,10 +89,12 @@ public:
         return MakeSurfels(points_, normals_, graph_, clusters, recipe_);
     }
 
-    Set Make(const Clustering &clusters) const
+    /// `beforeFit`, if given, is called between generation and fit (a progress report).
+    Set Make(const Clustering &clusters, const std::function<void()> &beforeFit = nullptr) const
     {
         Set s;
         s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, recipe_);
+        if (beforeFit) beforeFit();
         s.fitted = s.unfitted;
         if (recipe_.fitOffsets) FitSurfelOffsets(points_, normals_, graph_, clusters, recipe_.creasePoints, s.fitted);
         return s;
@@ -101,13 +103,21 @@ public:
     /// Make(trial), from base = Make(baseClusters) and baseMembers = ClusterMembers(baseClusters),
     /// where trial differs from baseClusters only in the members of the clusters `dirty` (an index
     /// may be one past baseClusters' last, a new cluster); dirtyMembers[j] holds the members of
-    /// dirty[j] in trial, in increasing order.
-    Set Update(const Set &base, const Clustering &baseClusters, const ClusterMembers &baseMembers,
-               const Clustering &trial, const std::vector<int> &dirty,
-               const std::vector<std::vector<int>> &dirtyMembers) const
+    /// dirty[j] in trial, in increasing order. The base labels are not needed: a point whose
+    /// cluster changed is in a dirty cluster both before and after, so the caller may have
+    /// turned baseClusters into trial in place.
+    Set Update(const Set &base, const ClusterMembers &baseMembers, const Clustering &trial,
+               const std::vector<int> &dirty, const std::vector<std::vector<int>> &dirtyMembers) const
     {
-        const int count = trial.clusterCount, baseCount = baseClusters.clusterCount;
         Set s;
+        Update(base, baseMembers, trial, dirty, dirtyMembers, s);
+        return s;
+    }
+    /// The same into `s` (not `base`), reusing its buffers.
+    void Update(const Set &base, const ClusterMembers &baseMembers, const Clustering &trial,
+                const std::vector<int> &dirty, const std::vector<std::vector<int>> &dirtyMembers, Set &s) const
+    {
+        const int count = trial.clusterCount, baseCount = int(baseMembers.offset.size()) - 1;
         s.unfitted = base.unfitted;
         s.unfitted.resize(size_t(count));
         std::vector<int> dirtyIndex(size_t(std::max(count, baseCount)), -1);
@@ -124,24 +134,27 @@ public:
         s.fitted = base.fitted;
         s.fitted.resize(size_t(count));
         for (int c : dirty) s.fitted[size_t(c)] = s.unfitted[size_t(c)];
-        if (!recipe_.fitOffsets) return s;
+        if (!recipe_.fitOffsets) return;
 
         // Clusters to fit again: the changed ones, and those a sampled member of which has among
-        // its blended neighbour slots a point of a changed cluster (before or after the change).
+        // its blended neighbour slots a point of a changed cluster (before or after the change:
+        // the same clusters, see above).
         auto changed = [&](int point) {
-            const int before = baseClusters.label[point], after = trial.label[point];
-            return (before >= 0 && dirtyIndex[size_t(before)] >= 0) || (after >= 0 && dirtyIndex[size_t(after)] >= 0);
+            const int after = trial.label[point];
+            return after >= 0 && dirtyIndex[size_t(after)] >= 0;
         };
-        std::vector<int> refit(dirty);
+        std::vector<char> reached(size_t(baseCount), 0);
+#pragma omp parallel for schedule(static)
         for (int c = 0; c < baseCount; ++c) {
             if (dirtyIndex[size_t(c)] >= 0) continue;
-            bool reached = false;
             ForEachOffsetSample(baseMembers.begin(c), baseMembers.end(c), [&](int i) {
                 const int *q = graph_.begin(i), *end = q + std::min<int>(graph_.found[i], kOffsetNeighbors);
-                for (; q != end && !reached; ++q) reached = changed(*q);
+                for (; q != end && !reached[size_t(c)]; ++q) reached[size_t(c)] = changed(*q);
             });
-            if (reached) refit.push_back(c);
         }
+        std::vector<int> refit(dirty);
+        for (int c = 0; c < baseCount; ++c)
+            if (reached[size_t(c)]) refit.push_back(c);
         auto weightOf = [&s](int l) { return detail::BlendWeight(s.unfitted[size_t(l)]); };
         std::vector<float> offset(refit.size());
 #pragma omp parallel for schedule(dynamic, 16)
@@ -158,7 +171,6 @@ public:
             surfel = s.unfitted[size_t(refit[t])];
             MoveSurfel(surfel, offset[t]);
         }
-        return s;
     }
 
 private:

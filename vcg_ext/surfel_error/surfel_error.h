@@ -236,6 +236,13 @@ public:
         tree_->doQueryK(Point3f::Construct(x), k, queue);
     }
 
+    /// Appends to `indices` the centers closer to x than `radius` in single precision (callers
+    /// widen the radius by the rounding they must cover); `scratch` receives their squared distances.
+    void Within(const Point3d& x, double radius, std::vector<unsigned>& indices, std::vector<float>& scratch) const
+    {
+        tree_->doQueryDist(Point3f::Construct(x), float(radius), indices, scratch);
+    }
+
 private:
     std::unique_ptr<KdTree<float>> tree_;
 };
@@ -258,6 +265,12 @@ public:
     {}
 
     const BlendingSurfel& operator[](int i) const { return surfels_[i]; }
+
+    /// Appends the surfels whose centers lie within `radius` of x (CenterTree::Within).
+    void SurfelsWithin(const Point3d& x, double radius, std::vector<unsigned>& indices, std::vector<float>& scratch) const
+    {
+        tree_.Within(x, radius, indices, scratch);
+    }
 
     /// Per-thread working memory of Project().
     struct Scratch
@@ -510,13 +523,16 @@ using surfel_error_detail::SurfelSurface;
  * \pre the four arrays have the same non-zero size; centers finite, normals of unit length,
  *      majorAxes[i] and minorAxes[i] tangent semi-axis vectors, the major one non-zero;
  *      blendScale, if given, of the same size (see SurfelErrorAttributes::blendScale).
+ * smallestSize > 0 sets the floor on the surfel sizes (SmallestSurfelSize) instead of the
+ * centers' box: a surface of some of a set's surfels then blends them as the whole set's does.
  */
 inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& centers,
                                               const std::vector<Point3f>& normals,
                                               const std::vector<Point3f>& majorAxes,
                                               const std::vector<Point3f>& minorAxes,
                                               const SurfelErrorParams& params = SurfelErrorParams(),
-                                              const std::vector<float>* blendScale = nullptr)
+                                              const std::vector<float>* blendScale = nullptr,
+                                              double smallestSize = 0)
 {
     using namespace surfel_error_detail;
     CheckParams(params);
@@ -531,7 +547,8 @@ inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& center
         centersD[i] = Point3d::Construct(centers[i]);
         box.Add(centersD[i]);
     }
-    const double smallestSize = SmallestSurfelSize(box);
+    if (!(smallestSize > 0))
+        smallestSize = SmallestSurfelSize(box);
     SurfelErrorAttributes axes;
     axes.ellipseMajorAxes = &majorAxes;
     axes.ellipseMinorAxes = &minorAxes;
