@@ -266,18 +266,26 @@ inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph
                                                       const ClusterMembers &members)
 {
     std::vector<std::vector<int>> adjacent(clusters.clusterCount);
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (int a = 0; a < clusters.clusterCount; ++a) {
-        std::vector<int> &list = adjacent[size_t(a)];
-        for (const int *i = members.begin(a); i != members.end(a); ++i) {
-            const int *slot = graph.adjacency.data() + size_t(*i) * graph.stride;
-            for (int t = 0; t < graph.found[*i]; ++t) {
-                const int b = clusters.label[slot[t]];
-                if (b >= 0 && b != a) list.push_back(b);
+#pragma omp parallel
+    {
+        // Most links repeat (a cluster's members share neighbours): a per-thread stamp drops the
+        // repeats before the few distinct ones are sorted and stored at their exact size.
+        std::vector<int> linked, seenBy(size_t(clusters.clusterCount), -1);
+#pragma omp for schedule(dynamic, 1024)
+        for (int a = 0; a < clusters.clusterCount; ++a) {
+            linked.clear();
+            for (const int *i = members.begin(a); i != members.end(a); ++i) {
+                const int *slot = graph.adjacency.data() + size_t(*i) * graph.stride;
+                for (int t = 0; t < graph.found[*i]; ++t) {
+                    const int b = clusters.label[slot[t]];
+                    if (b < 0 || b == a || seenBy[size_t(b)] == a) continue;
+                    seenBy[size_t(b)] = a;
+                    linked.push_back(b);
+                }
             }
+            std::sort(linked.begin(), linked.end());
+            adjacent[size_t(a)].assign(linked.begin(), linked.end());
         }
-        SortUnique(list);
-        list.shrink_to_fit(); // ~60 % are repeats: at 20 M points the lists' slack is hundreds of MB
     }
     return adjacent;
 }
@@ -340,8 +348,9 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
     };
     struct Candidate { double cost; int a, b, versionA, versionB; bool operator<(const Candidate &o) const { return cost > o.cost || (cost == o.cost && (a > o.a || (a == o.a && b > o.b))); } };
     std::priority_queue<Candidate> queue = [&]() { // made a heap in linear time
-        std::vector<Candidate> initial;
-        for (const MergePair &p : LinkedPairs(model, adjacent)) initial.push_back({p.cost, p.a, p.b, 0, 0});
+        const std::vector<MergePair> pairs = LinkedPairs(model, adjacent);
+        std::vector<Candidate> initial(pairs.size());
+        for (size_t p = 0; p < pairs.size(); ++p) initial[p] = {pairs[p].cost, pairs[p].a, pairs[p].b, 0, 0};
         return std::priority_queue<Candidate>(std::less<Candidate>(), std::move(initial));
     }();
     if (!goOn(0.3)) return kRefinementCancelled;
