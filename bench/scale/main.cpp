@@ -377,7 +377,11 @@ void WriteMarkdown(const std::vector<Measurement> &runs, const Options &o, const
           "recommendations: [README.md](README.md).\n\n"
        << "- input: " << Get(o, "shape", "dragon") << " densified (seed " << Get(o, "seed", "1") << ", noise "
        << Get(o, "noise", "0") << ", point order " << Get(o, "order", "random")
-       << "), generated in memory; default parameters (level 8, k = 16)\n"
+       << "), generated in memory; "
+       << (Get(o, "target-percent", "0") != "0"
+               ? "TargetPercentage " + Get(o, "target-percent", "0") +
+                     " (exact count from level 8: level search, merges or splits, exchanges for the largest error; k = 16)\n"
+               : std::string("default parameters (level 8, k = 16)\n"))
        << "- commit: " << Get(o, "commit", "unknown") << "\n"
        << "- machine: " << MachineDescription() << "\n"
        << "- load average (1/5/15 min) at start: " << loadStart << ", at end: " << loadEnd
@@ -440,6 +444,17 @@ void WriteMarkdown(const std::vector<Measurement> &runs, const Options &o, const
     for (const LedgerRow &r : kLedger)
         md << "| " << r.buffer << " | " << r.where << " | " << (r.perPoint < 0 ? 64.0 : r.perPoint) << " | "
            << r.perCluster << " | " << r.when << " |\n";
+
+    if (Get(o, "target-percent", "0") != "0") {
+        md << "\n## Target size: the stages beyond the level path\n\n"
+           << "| points | threads | output | merges or splits s | exchanges s | total s | B/pt beyond input |\n"
+              "|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const Measurement &m : runs)
+            md << "| " << Format("%.0f", m.Num("points")) << " | " << m.Text("threads") << " | "
+               << Format("%.0f", m.Num("output")) << " | " << Format("%.2f", m.Num("refinement_s")) << " | "
+               << Format("%.2f", m.Num("exchanges_s")) << " | " << Format("%.2f", m.Num("total_s")) << " | "
+               << Format("%.1f", m.PerPoint("beyond_input_bytes")) << " |\n";
+    }
 
     md << "\n## Responsiveness: longest interval between progress callbacks\n\n"
        << "| points | threads | callbacks | longest gap s | in stage |\n|---:|---:|---:|---:|---|\n";
