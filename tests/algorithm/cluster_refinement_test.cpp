@@ -2,6 +2,7 @@
 // cheapest neighbours.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include <vcg_ext/gaussphere/cluster_refinement.h>
@@ -109,4 +110,68 @@ TEST(SplitToCount, ReachesTheCountExactly)
     EXPECT_EQ(refiner.Count(), 37);
     std::set<int> labels(c.label.begin(), c.label.end());
     EXPECT_EQ(int(labels.size()), 37);
+}
+
+// Merging reports its progress and stops when told to: at 20 million points it runs for
+// seconds. Reporting does not change what is merged.
+TEST(MergeToCount, ReportsProgressAndCancels)
+{
+    const Terraces t = MakeTerraces(0.5f);
+    const int target = t.set.Size() / 4;
+    Clustering quiet = Singletons(t.set.Size()), watched = quiet, stopped = quiet;
+    MergeToCount(t.set.points, t.set.normals, t.graph, 1.0, target, quiet);
+    std::vector<double> fractions;
+    MergeToCount(t.set.points, t.set.normals, t.graph, 1.0, target, watched, [&](double f) {
+        fractions.push_back(f);
+        return true;
+    });
+    EXPECT_EQ(watched.label, quiet.label);
+    ASSERT_GE(fractions.size(), 3u) << "set-up steps and the merge loop";
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_LE(fractions.back(), 1.0);
+    int calls = 0;
+    EXPECT_EQ(MergeToCount(t.set.points, t.set.normals, t.graph, 1.0, target, stopped, [&](double) { return ++calls < 2; }),
+              kRefinementCancelled);
+    EXPECT_EQ(calls, 2);
+}
+
+TEST(SplitToCount, ReportsProgressAndCancels)
+{
+    const PointSet cube = CubeSurface(8, false);
+    Clustering c;
+    c.label.assign(cube.Size(), 0);
+    c.clusterCount = 1;
+    ClusterRefiner refiner(cube.points, cube.normals, c, 1.0);
+    int calls = 0;
+    EXPECT_EQ(refiner.SplitToCount(37, [&](double fraction) {
+        EXPECT_GE(fraction, 0.0);
+        ++calls;
+        return false;
+    }), kRefinementCancelled);
+    EXPECT_EQ(calls, 1);
+    EXPECT_EQ(refiner.SplitToCount(37, [](double) { return true; }), 36);
+}
+
+// The pairs of linked clusters: every linked pair once (a < b), with MergeCostModel's cost, in
+// order of a then b, as a serial listing gives them.
+TEST(LinkedPairs, ListsEveryLinkedPairOnceWithItsCost)
+{
+    const Terraces t = MakeTerraces(0.5f);
+    Clustering c;
+    for (int i = 0; i < t.set.Size(); ++i) c.label.push_back(i / 3); // clusters of three neighbours in a row
+    c.clusterCount = (t.set.Size() + 2) / 3;
+    const ClusterMembers members(c);
+    const MergeCostModel model(t.set.points, t.set.normals, c, members, 1.0);
+    const std::vector<std::vector<int>> adjacent = ClusterAdjacency(t.graph, c, members);
+    std::set<std::pair<int, int>> expected;
+    for (int i = 0; i < t.set.Size(); ++i)
+        for (const int *q = t.graph.begin(i); q != t.graph.begin(i) + t.graph.found[i]; ++q)
+            if (c.label[i] != c.label[*q]) expected.insert({std::min(c.label[i], c.label[*q]), std::max(c.label[i], c.label[*q])});
+    const std::vector<MergePair> pairs = LinkedPairs(model, adjacent);
+    ASSERT_EQ(pairs.size(), expected.size());
+    auto e = expected.begin();
+    for (const MergePair &p : pairs) {
+        EXPECT_EQ(std::make_pair(p.a, p.b), *e++);
+        EXPECT_EQ(p.cost, model.Cost(p.a, p.b));
+    }
 }

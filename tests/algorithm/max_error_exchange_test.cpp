@@ -3,6 +3,7 @@
 // runs only where it is asked for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -242,4 +243,67 @@ TEST(MaxErrorExchange, CancelledFromTheCallback)
     gstest::ToMesh(cube, m);
     EXPECT_THROW(ResamplePointSet(m, AtTarget(100, 16), stopAtExchanges), ResamplingCancelled);
     EXPECT_NO_THROW(ResamplePointSet(m, AtTarget(100, 0), stopAtExchanges));
+}
+
+// The merge pairs are sorted as they are read, in chunks: the same order as sorting them all.
+TEST(MaxErrorExchange, CheapestFirstReadsInSortedOrder)
+{
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> cost(0, 50), cluster(0, 3000);
+    std::vector<MergePair> pairs;
+    for (int p = 0; p < 5000; ++p) { // repeated costs: the order falls back to the clusters
+        const int a = cluster(rng), b = a + 1 + cluster(rng);
+        pairs.push_back({double(cost(rng)), a, b});
+    }
+    std::vector<MergePair> sorted = pairs;
+    std::sort(sorted.begin(), sorted.end());
+    CheapestFirst lazy(pairs);
+    for (size_t i = 0; i < sorted.size(); ++i) {
+        const MergePair *p = lazy.At(i);
+        ASSERT_NE(p, nullptr);
+        ASSERT_TRUE(p->cost == sorted[i].cost && p->a == sorted[i].a && p->b == sorted[i].b) << i;
+    }
+    EXPECT_EQ(lazy.At(sorted.size()), nullptr);
+    EXPECT_TRUE(CheapestFirst().Empty());
+}
+
+// A trial's label change is undone exactly, cluster count included.
+TEST(MaxErrorExchange, LabelChangeUndoes)
+{
+    Clustering c;
+    c.label = {0, 0, 1, 1, 2, 2};
+    c.clusterCount = 3;
+    const Clustering before = c;
+    LabelChange change(c);
+    change.Set(1, 3);
+    change.Set(4, 0);
+    change.Set(1, 2); // set twice: undone to the first value
+    c.clusterCount = 4;
+    EXPECT_EQ(c.label, IndexArray({0, 2, 1, 1, 0, 2}));
+    change.Undo();
+    EXPECT_EQ(c.label, before.label);
+    EXPECT_EQ(c.clusterCount, before.clusterCount);
+}
+
+// Local projections stay exact when two thirds of the surfels vanish (the projections of the points
+// that lost theirs reach far beyond their old reach; the surface of the surfels near the changed
+// points, or the whole set where a projection reached beyond it, gives the full measure).
+TEST(MaxErrorExchange, LocalMeasureHoldsWhenSurfelsVanish)
+{
+    gstest::PointSet cube = gstest::CubeSurface(20, true);
+    std::mt19937 jitterRng(4);
+    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
+    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
+    const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
+    const double diagonal = Diagonal(cube);
+    BlendedDistances local(cube.points, cube.normals, diagonal);
+    local.Reset(r.surfels);
+    std::vector<Surfel> fewer(r.surfels.begin(), r.surfels.begin() + r.surfels.size() / 3); // two thirds gone
+    BlendedDistances::Measure m = local.Try(r.surfels, fewer);
+    local.Accept(std::move(m));
+    BlendedDistances full(cube.points, cube.normals, diagonal);
+    full.Reset(fewer);
+    for (int i = 0; i < cube.Size(); ++i)
+        ASSERT_NEAR(local.Distance(i), full.Distance(i), 1e-9 * diagonal) << "point " << i;
+    EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
 }

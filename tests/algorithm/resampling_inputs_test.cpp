@@ -252,7 +252,7 @@ bool CancelAtNthStageReport(int, const char *what)
 
 /// Resamples a sphere, cancelling at report `n` of the stage named `stage`; expects the run to be
 /// cancelled and returns how many of that stage's reports came.
-int StageReportsUntilCancelled(const char *stage, int n)
+int StageReportsUntilCancelled(const char *stage, int n, const ResamplingParams &param = ResamplingParams())
 {
     const gstest::PointSet s = gstest::FibonacciSphere(2000);
     OrientedPointMesh m;
@@ -260,7 +260,7 @@ int StageReportsUntilCancelled(const char *stage, int n)
     gCancelStage = stage;
     gCancelAtReport = n;
     gStageReports = 0;
-    EXPECT_THROW(ResamplePointSet(m, ResamplingParams(), CancelAtNthStageReport), ResamplingCancelled);
+    EXPECT_THROW(ResamplePointSet(m, param, CancelAtNthStageReport), ResamplingCancelled);
     return gStageReports;
 }
 
@@ -275,6 +275,14 @@ TEST(ResamplingInputs, CancelDuringClusterNormalization)
 TEST(ResamplingInputs, CancelDuringTheSpatialSort)
 {
     EXPECT_EQ(StageReportsUntilCancelled("sorting the points", 3), 3);
+}
+
+// Below level 2's count, the merges to the target report between their steps and cancel.
+TEST(ResamplingInputs, CancelWhileMergingToATargetSize)
+{
+    ResamplingParams param;
+    param.targetCount = 20;
+    EXPECT_EQ(StageReportsUntilCancelled("merging clusters", 2, param), 2);
 }
 
 } // namespace
