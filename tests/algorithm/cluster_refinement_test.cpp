@@ -44,6 +44,15 @@ Terraces MakeTerraces(float step)
     return t;
 }
 
+/// Every point of `s` in one cluster.
+Clustering OneCluster(const PointSet &s)
+{
+    Clustering c;
+    c.label.assign(s.Size(), 0);
+    c.clusterCount = 1;
+    return c;
+}
+
 Clustering Singletons(int n)
 {
     Clustering c;
@@ -101,9 +110,7 @@ TEST(MergeToCount, StopsWhenNoClustersAreLinked)
 TEST(SplitToCount, ReachesTheCountExactly)
 {
     const PointSet cube = CubeSurface(8, false);
-    Clustering c;
-    c.label.assign(cube.Size(), 0);
-    c.clusterCount = 1;
+    Clustering c = OneCluster(cube);
     ClusterRefiner refiner(cube.points, cube.normals, c, 1.0);
     EXPECT_EQ(refiner.SplitToCount(37), 36);
     EXPECT_EQ(c.clusterCount, 37);
@@ -138,9 +145,7 @@ TEST(MergeToCount, ReportsProgressAndCancels)
 TEST(SplitToCount, ReportsProgressAndCancels)
 {
     const PointSet cube = CubeSurface(8, false);
-    Clustering c;
-    c.label.assign(cube.Size(), 0);
-    c.clusterCount = 1;
+    Clustering c = OneCluster(cube);
     ClusterRefiner refiner(cube.points, cube.normals, c, 1.0);
     int calls = 0;
     EXPECT_EQ(refiner.SplitToCount(37, [&](double fraction) {

@@ -94,17 +94,23 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> pick(0, int(r.surfels.size()) - 1);
     std::vector<Surfel> accepted = r.surfels, changed = r.surfels;
-    for (int round = 0; round < 5; ++round) {
-        // Move one surfel along its normal, narrow another's blend, add a copy of a third.
-        Surfel &moved = changed[pick(rng)];
-        moved.position += moved.normal * float(0.01 * diagonal);
-        changed[pick(rng)].blendScale = 0.5f;
-        Surfel extra = changed[pick(rng)];
-        extra.position += extra.majorAxis * 0.5f;
-        changed.push_back(extra);
+    for (int round = 0; round < 6; ++round) {
+        if (round < 5) {
+            // Move one surfel along its normal, narrow another's blend, add a copy of a third.
+            Surfel &moved = changed[pick(rng)];
+            moved.position += moved.normal * float(0.01 * diagonal);
+            changed[pick(rng)].blendScale = 0.5f;
+            Surfel extra = changed[pick(rng)];
+            extra.position += extra.majorAxis * 0.5f;
+            changed.push_back(extra);
+        } else {
+            // Two thirds vanish: the points that lose their surfels reach far beyond their old
+            // reach (their surface is the nearby surfels', or every surfel's where that falls short).
+            changed.resize(changed.size() / 3);
+        }
 
         BlendedDistances::Measure m = local.Try(accepted, changed);
-        EXPECT_LT(m.points.size(), cube.points.size() / 2) << "round " << round << ": the changes are local";
+        if (round < 5) EXPECT_LT(m.points.size(), cube.points.size() / 2) << "round " << round << ": the changes are local";
         local.Accept(std::move(m));
         accepted = changed;
         BlendedDistances full(cube.points, cube.normals, diagonal);
@@ -283,27 +289,4 @@ TEST(MaxErrorExchange, LabelChangeUndoes)
     change.Undo();
     EXPECT_EQ(c.label, before.label);
     EXPECT_EQ(c.clusterCount, before.clusterCount);
-}
-
-// Local projections stay exact when two thirds of the surfels vanish (the projections of the points
-// that lost theirs reach far beyond their old reach; the surface of the surfels near the changed
-// points, or the whole set where a projection reached beyond it, gives the full measure).
-TEST(MaxErrorExchange, LocalMeasureHoldsWhenSurfelsVanish)
-{
-    gstest::PointSet cube = gstest::CubeSurface(20, true);
-    std::mt19937 jitterRng(4);
-    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
-    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
-    const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
-    const double diagonal = Diagonal(cube);
-    BlendedDistances local(cube.points, cube.normals, diagonal);
-    local.Reset(r.surfels);
-    std::vector<Surfel> fewer(r.surfels.begin(), r.surfels.begin() + r.surfels.size() / 3); // two thirds gone
-    BlendedDistances::Measure m = local.Try(r.surfels, fewer);
-    local.Accept(std::move(m));
-    BlendedDistances full(cube.points, cube.normals, diagonal);
-    full.Reset(fewer);
-    for (int i = 0; i < cube.Size(); ++i)
-        ASSERT_NEAR(local.Distance(i), full.Distance(i), 1e-9 * diagonal) << "point " << i;
-    EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
 }
