@@ -47,7 +47,7 @@ struct IndexPropagationParams
 /// Labels every point whose `clusters.label` is not -1 (points pre-marked -1 are
 /// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i (>= 0 for every
 /// point, excluded ones included); seeds are taken in `seedOrder` (a permutation of the
-/// points). Postcondition: every non-excluded point has a label in [0, clusterCount); points
+/// points; empty: 0, 1, ..., n-1). Postcondition: every non-excluded point has a label in [0, clusterCount); points
 /// of one cluster share a triangle; labels number the clusters in the order of their seeds
 /// in seedOrder.
 /// `progress(fraction)` is called now and then from the calling thread (inside an OpenMP
@@ -87,7 +87,8 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
     IndexArray owner(size_t(triangleCount), 0);
 
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
-    const int seedCount = int(seedOrder.size());
+    const int seedCount = seedOrder.empty() ? n : int(seedOrder.size());
+    auto seedAt = [&seedOrder](int position) { return seedOrder.empty() ? position : seedOrder[position]; };
     const int reportEvery = std::max(1, seedCount / 50);
     std::atomic<bool> cancelled(false);
     std::atomic<long long> swept(0); // positions passed, summed over the threads
@@ -123,7 +124,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                 if (reporter) report();
                 if (cancelled.load(std::memory_order_relaxed)) break;
             }
-            const int seed = seedOrder[position];
+            const int seed = seedAt(position);
             const int t = triangle[seed];
             // The owner first: the labels of other triangles' points are other threads' to write.
             if (owner[t] != self || label[seed] != unlabelled) continue;
@@ -178,10 +179,10 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
     if (cancelled) return false;
 
     // Number the clusters by their seeds' positions in seedOrder.
-    IndexArray idOfPosition(seedOrder.size());
+    IndexArray idOfPosition(seedCount);
     int next = 0;
-    for (int s = 0; s < int(seedOrder.size()); ++s) {
-        const int l = label[seedOrder[s]];
+    for (int s = 0; s < seedCount; ++s) {
+        const int l = label[seedAt(s)];
         idOfPosition[s] = next;
         next += int(l == s);
     }
