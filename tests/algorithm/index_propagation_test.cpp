@@ -320,6 +320,26 @@ TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSee
     omp_set_num_threads(threadsBefore);
 }
 
+// An empty seed order is the points' own order (the resampler's, after its spatial renumbering),
+// on one thread and on several.
+TEST_F(IndexPropagationOnBumps, EmptySeedOrderIsThePointOrder)
+{
+    const BumpyGrid &d = Data();
+    IndexArray identity(d.s.Size());
+    for (int i = 0; i < d.s.Size(); ++i) identity[i] = i;
+    const int threadsBefore = omp_get_max_threads();
+    for (int threads : {1, 2}) {
+        omp_set_num_threads(threads);
+        const Clustering given = Propagate(d.s.normals, d.triangle, d.graph, identity, Params(6));
+        const Clustering empty = Propagate(d.s.normals, d.triangle, d.graph, IndexArray(), Params(6));
+        EXPECT_EQ(empty.clusterCount, given.clusterCount) << threads << " threads";
+        EXPECT_EQ(empty.label, given.label) << threads << " threads";
+        EXPECT_NE(Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6)).label, empty.label)
+            << "the fixture's seed order gives other labels: the comparison can fail";
+    }
+    omp_set_num_threads(threadsBefore);
+}
+
 // Points pre-marked -1 are excluded: they stay -1, are never seeds, and do not carry
 // labels across (a path cut by an excluded point gives two clusters).
 TEST(IndexPropagation, ExcludedPointsStayExcluded)

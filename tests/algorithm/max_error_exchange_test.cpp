@@ -289,4 +289,15 @@ TEST(MaxErrorExchange, LabelChangeUndoes)
     change.Undo();
     EXPECT_EQ(c.label, before.label);
     EXPECT_EQ(c.clusterCount, before.clusterCount);
+    { // a trial left by an exception is undone by the destructor; a kept one is not
+        LabelChange dropped(c);
+        dropped.Set(0, 2);
+    }
+    EXPECT_EQ(c.label, before.label);
+    {
+        LabelChange kept(c);
+        kept.Set(0, 2);
+        kept.Keep();
+    }
+    EXPECT_EQ(c.label[0], 2);
 }

@@ -79,8 +79,8 @@ public:
 
     /// Splits the clusters with the largest L2,1 error until there are `target` clusters
     /// (or no cluster can be split). Returns the number of splits. `progress(fraction)`, if
-    /// given, is called every few thousand splits; when it returns false splitting stops and
-    /// SplitToCount returns kRefinementCancelled.
+    /// given, is called every few thousand splits; when it returns false splitting stops (the
+    /// splits made so far stay) and SplitToCount returns kRefinementCancelled.
     int SplitToCount(int target, const std::function<bool(double)> &progress = nullptr)
     {
         typedef std::pair<std::pair<double, int>, int> Entry; // ((error, size), cluster)
@@ -91,8 +91,12 @@ public:
         for (int c = 0; c < Count(); ++c) push(c);
         int splits = 0;
         const int needed = std::max(1, target - Count());
+        int nextReport = 0;
         while (Count() < target && !queue.empty()) {
-            if (progress && splits % 4096 == 0 && !progress(double(splits) / needed)) return kRefinementCancelled;
+            if (progress && splits >= nextReport) {
+                if (!progress(double(splits) / needed)) return kRefinementCancelled;
+                nextReport = splits + 4096;
+            }
             const int c = queue.top().second;
             queue.pop();
             const int added = Split(c);
@@ -268,9 +272,10 @@ inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph
     std::vector<std::vector<int>> adjacent(clusters.clusterCount);
 #pragma omp parallel
     {
-        // Most links repeat (a cluster's members share neighbours): a per-thread stamp drops the
-        // repeats before the few distinct ones are sorted and stored at their exact size.
-        std::vector<int> linked, seenBy(size_t(clusters.clusterCount), -1);
+        // Most links repeat (a cluster's members share neighbours, and a cluster has a few
+        // neighbouring clusters): repeats are dropped as they come, by a look at the few kept,
+        // before those are sorted and stored at their exact size.
+        std::vector<int> linked;
 #pragma omp for schedule(dynamic, 1024)
         for (int a = 0; a < clusters.clusterCount; ++a) {
             linked.clear();
@@ -278,9 +283,7 @@ inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph
                 const int *slot = graph.adjacency.data() + size_t(*i) * graph.stride;
                 for (int t = 0; t < graph.found[*i]; ++t) {
                     const int b = clusters.label[slot[t]];
-                    if (b < 0 || b == a || seenBy[size_t(b)] == a) continue;
-                    seenBy[size_t(b)] = a;
-                    linked.push_back(b);
+                    if (b >= 0 && b != a && std::find(linked.begin(), linked.end(), b) == linked.end()) linked.push_back(b);
                 }
             }
             std::sort(linked.begin(), linked.end());
@@ -299,8 +302,9 @@ struct MergePair
     bool operator<(const MergePair &o) const { return cost < o.cost || (cost == o.cost && (a < o.a || (a == o.a && b < o.b))); }
 };
 
-/// Every pair of `adjacent` clusters (ClusterAdjacency) with its cost by `model`, ordered by a,
-/// then b; the costs computed in parallel.
+/// The pairs (a, b), a < b, with b in adjacent[a] (ClusterAdjacency: a member of a has a neighbour
+/// in b; the k-nearest graph is not symmetric, and as before, a link seen only from b's members
+/// is not listed), with their costs by `model`, ordered by a, then b; computed in parallel.
 inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent)
 {
     const int count = int(adjacent.size());
@@ -325,7 +329,7 @@ inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std
 /// Returns the number of merges; clusters are compacted afterwards.
 /// `progress(fraction)`, if given, is called now and then from the calling thread (every few
 /// thousand merges: at 20 million points merging takes seconds); when it returns false merging
-/// stops and MergeToCount returns kRefinementCancelled, the clusters left unspecified.
+/// stops and MergeToCount returns kRefinementCancelled, the clusters unchanged.
 inline int MergeToCount(const PointArray &points, const PointArray &normals,
                         const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters,
                         const std::function<bool(double)> &progress = nullptr)
@@ -355,9 +359,12 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
     }();
     if (!goOn(0.3)) return kRefinementCancelled;
     const int needed = count - target;
-    int remaining = count, merges = 0;
+    int remaining = count, merges = 0, nextReport = 0;
     while (remaining > target && !queue.empty()) {
-        if (merges % 4096 == 0 && !goOn(0.3 + 0.7 * merges / needed)) return kRefinementCancelled;
+        if (merges >= nextReport) {
+            if (!goOn(0.3 + 0.7 * merges / needed)) return kRefinementCancelled;
+            nextReport = merges + 4096;
+        }
         const Candidate top = queue.top();
         queue.pop();
         if (root(top.a) != top.a || root(top.b) != top.b || version[top.a] != top.versionA ||

@@ -9,7 +9,8 @@
 // it splits a cluster at the worst point (its own, then those of the surfels blended there,
 // nearest first), merges the cheapest pair of neighbouring clusters elsewhere (MergeCostModel, as
 // MergeToCount chooses; pairs touching the split cluster or an earlier exchange excluded), and
-// keeps the exchange if the largest distance went down. A split that does not lower it by itself
+// keeps the exchange if the largest distance went down (by more than the rounding of projections
+// summed in another order, 1e-9 of the diagonal). A split that does not lower it by itself
 // (the count one higher) is not tried with merges; a merge that raises it again is followed by
 // the next cheapest pair that shares no cluster with it. Rounds go on while an exchange is kept,
 // up to maxRounds.
@@ -17,14 +18,14 @@
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
 // whose reach holds a surfel that changed (split, merged, refitted) are projected again, tens to
-// hundreds per trial; the surfels are updated where the change reaches (SurfelMaker::Update).
-// What stays linear in the points is light: a copy of the labels and a comparison of every
-// point's reach with the changed centres. Measured (2 threads): the dragon at 5 % (437,645
-// points) 1.0 s of exchanges for 0.8 s of resampling, the igea 0.33 s for 0.22 s; 2 million
-// points at 10 % 4.2 s for 3.8 s, a third of it the first full measure. The local measure
-// equals a full one up to rounding,
-// except where surfel centres tie for the k-th nearest of a projection step (regular grids):
-// which of them the rebuilt tree returns is arbitrary, for a full measure too.
+// hundreds per trial, on a surface of the surfels near them (BlendedDistances); the surfels are
+// updated where the change reaches (SurfelMaker::Update), into buffers reused by every trial, and
+// the labels are changed in place and back (LabelChange). What stays linear is light: a
+// comparison of every point's reach with the changed centres, a scan of the clusters' sampled
+// neighbours for refits, a copy of the surfels. Measured (gsscale, 10 %, 2 threads): 1 million
+// points 1.7 s of exchanges for 1.3 s of resampling, 20 million 26 s for 43 s. The local measure
+// equals a full one up to rounding, except where surfel centres tie for the k-th nearest of a
+// projection step (regular grids): which of them a tree returns is arbitrary, for a full measure too.
 #ifndef VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 #define VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
 
@@ -165,18 +166,15 @@ public:
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.f);
         if (count > 0) {
-            // Twice the old reaches: the new projections mostly stay within that (checked).
-            double radius = 0;
-            for (int i : m.points) radius = std::max(radius, 2.0 * reach_[i]);
             std::vector<int> fresh; // surfels not where the tree has them
             std::set_union(m.changed.begin(), m.changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
                            std::back_inserter(fresh));
             std::vector<int> local;
-            Project(LocalSurface(surfels, fresh, m.points, radius, local), m.points.data(), 0, count,
-                    m.distance.data(), m.reach.data());
+            Project(LocalSurface(surfels, fresh, m.points, local), m.points.data(), 0, count, m.distance.data(),
+                    m.reach.data());
             std::vector<int> beyond; // points whose new projection reached farther: on every surfel
             for (int t = 0; t < count; ++t)
-                if (!(m.reach[t] <= radius)) beyond.push_back(m.points[t]);
+                if (!(m.reach[t] <= LocalRadius(m.points[t]))) beyond.push_back(m.points[t]);
             if (!beyond.empty()) {
                 std::vector<double> distance(beyond.size());
                 std::vector<float> reach(beyond.size());
@@ -214,8 +212,7 @@ public:
     std::vector<int> BlendedAt(int i, const std::vector<Surfel> &current) const
     {
         std::vector<int> local;
-        const std::vector<int> point{i};
-        const vcg::tri::SurfelSurface surface = LocalSurface(current, changedSinceReset_, point, 2.0 * reach_[i], local);
+        const vcg::tri::SurfelSurface surface = LocalSurface(current, changedSinceReset_, {i}, local);
         vcg::tri::SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
@@ -237,25 +234,30 @@ private:
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
     }
 
+    /// How far from point i a local surface holds every surfel (LocalSurface): twice the reach of
+    /// its current projection, which a new one mostly stays within (checked).
+    double LocalRadius(int i) const { return 2.0 * reach_[i]; }
+
     /// A surface of the surfels of `surfels` that projections of `points` reaching no farther than
-    /// `radius` involve, `local` receiving its surfels' indices in `surfels`: those the tree of the
-    /// measured set finds within `radius` of a point, unless listed in `fresh` (ascending: the
-    /// surfels that differ from that set), and every one of `fresh`. Blended with the floor on the
-    /// sizes of the whole set (MakeEllipseSurfelSurface). With no finite radius, every surfel.
+    /// their LocalRadius involve, `local` receiving its surfels' indices in `surfels`: those the
+    /// tree of the measured set finds within that radius of a point, unless listed in `fresh`
+    /// (ascending: the surfels that differ from that set), and every one of `fresh`. Blended with
+    /// the floor on the sizes of the whole set (MakeEllipseSurfelSurface). Every surfel instead
+    /// where a radius is infinite or fewer surfels than a projection blends are found.
     vcg::tri::SurfelSurface LocalSurface(const std::vector<Surfel> &surfels, const std::vector<int> &fresh,
-                                         const std::vector<int> &points, double radius, std::vector<int> &local) const
+                                         const std::vector<int> &points, std::vector<int> &local) const
     {
         local.clear();
-        if (!std::isfinite(radius) || !measured_) {
-            for (int c = 0; c < int(surfels.size()); ++c) local.push_back(c);
-            return BlendedSurfaceOf(surfels, metric_);
-        }
+        bool whole = !measured_;
         for (int c : fresh)
             if (c < int(surfels.size())) local.push_back(c);
         std::vector<unsigned> near;
         std::vector<float> scratch;
-        for (int i : points) {
-            const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
+        for (size_t p = 0; p < points.size() && !whole; ++p) {
+            const double radius = LocalRadius(points[p]);
+            whole = !std::isfinite(radius);
+            if (whole) break;
+            const vcg::Point3d q = vcg::Point3d::Construct(points_[points[p]]);
             near.clear();
             scratch.clear();
             // Widened by the single-precision rounding of the tree's distances.
@@ -264,6 +266,11 @@ private:
                 if (c < surfels.size() && !std::binary_search(fresh.begin(), fresh.end(), int(c))) local.push_back(int(c));
         }
         SortUnique(local);
+        if (whole || local.size() < size_t(metric_.neighborCount)) {
+            local.resize(surfels.size());
+            for (int c = 0; c < int(surfels.size()); ++c) local[size_t(c)] = c;
+            return BlendedSurfaceOf(surfels, metric_);
+        }
         vcg::Box3d box;
         for (const Surfel &s : surfels) box.Add(vcg::Point3d::Construct(s.position));
         return BlendedSurfaceOf(surfels, local.data(), local.size(), metric_,
@@ -329,11 +336,16 @@ private:
 };
 
 /// Labels of a clustering changed for a trial, with what they were: Undo() restores them and the
-/// cluster count.
+/// cluster count, and so does the destructor (an exception in a trial leaves the clustering as it
+/// was) unless Keep() was called.
 class LabelChange
 {
 public:
     explicit LabelChange(Clustering &clusters) : clusters_(clusters), count_(clusters.clusterCount) {}
+    ~LabelChange() { Undo(); }
+    LabelChange(const LabelChange &) = delete;
+    LabelChange &operator=(const LabelChange &) = delete;
+
     void Set(int point, int label)
     {
         before_.push_back({point, clusters_.label[point]});
@@ -341,23 +353,27 @@ public:
     }
     void Undo()
     {
+        if (kept_) return;
         for (auto e = before_.rbegin(); e != before_.rend(); ++e) clusters_.label[e->first] = e->second;
         before_.clear();
         clusters_.clusterCount = count_;
     }
+    void Keep() { kept_ = true; }
 
 private:
     Clustering &clusters_;
     int count_;
+    bool kept_ = false;
     std::vector<std::pair<int, int>> before_;
 };
 
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
 /// to the blended surface of the surfels `maker` makes of them (file header), measured as
 /// vcg::tri::ComputeSurfelError measures it (default SurfelErrorParams) over the bounding-box
-/// `diagonal` of the points. `progress(round)` is called before the first measure and before
-/// each trial (round from 0); when it returns false the exchange stops with cancelled = true and
-/// the clusters of the last kept exchange. On return `surfels` holds maker.Make(clusters).fitted.
+/// `diagonal` of the points. `progress(round)` is called before the first measure, between its
+/// steps (generation, fit, blocks of points, the merge pairs' set-up) and before each trial (round
+/// from 0); when it returns false the exchange stops with cancelled = true and the clusters of the
+/// last kept exchange. On return `surfels` holds maker.Make(clusters).fitted.
 /// Nothing is tried with fewer than 3 clusters, weightWidth <= 0 (no merge cost) or every point
 /// on the surface already.
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
@@ -466,6 +482,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                 maker.Update(current, members, clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, trial);
                 BlendedDistances::Measure measure = distances.Try(current.fitted, trial.fitted);
                 if (measure.max < distances.Max() - rounding) {
+                    exchange.Keep();
                     distances.Accept(std::move(measure));
                     std::swap(current, trial); // the old set's buffers serve the next trials
                     settled[c] = settled[keep] = settled[gone] = 1;
