@@ -337,7 +337,9 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
     const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
+    if (!goOn(0)) return kRefinementCancelled;
     std::unique_ptr<const ClusterMembers> members(new ClusterMembers(clusters)); // freed before merging
+    if (!goOn(0.05)) return kRefinementCancelled;
     std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters, *members);
     if (!goOn(0.1)) return kRefinementCancelled;
     MergeCostModel model(points, normals, clusters, *members, weightWidth);
