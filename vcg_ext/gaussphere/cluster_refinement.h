@@ -27,12 +27,15 @@
 #define VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <queue>
 #include <utility>
 #include <vector>
+
+#include <omp.h>
 
 #include <vcg/space/point3.h>
 
@@ -265,11 +268,19 @@ private:
 };
 
 /// Per cluster, the other clusters linked to it by `graph` (every neighbour found, not only the
-/// cone), sorted, without repeats. `members` = ClusterMembers(clusters).
+/// cone), sorted, without repeats. `members` = ClusterMembers(clusters). `progress(fraction)`, if
+/// given, is called now and then from the calling thread (at 20 million points this takes
+/// seconds); when it returns false the lists are left incomplete and `cancelled`, if given, set.
 inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph, const Clustering &clusters,
-                                                      const ClusterMembers &members)
+                                                      const ClusterMembers &members,
+                                                      const std::function<bool(double)> &progress = nullptr,
+                                                      bool *cancelled = nullptr)
 {
     std::vector<std::vector<int>> adjacent(clusters.clusterCount);
+    const int chunk = 1024, chunks = (clusters.clusterCount + chunk - 1) / chunk;
+    const int reportEvery = std::max(1, chunks / 50);
+    std::atomic<int> chunksDone(0);
+    std::atomic<bool> stop(false);
 #pragma omp parallel
     {
         // Most links repeat (a cluster's members share neighbours, and a cluster has a few
@@ -278,6 +289,13 @@ inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph
         std::vector<int> linked;
 #pragma omp for schedule(dynamic, 1024)
         for (int a = 0; a < clusters.clusterCount; ++a) {
+            if (a % chunk == 0) {
+                const int done = ++chunksDone;
+                // Only the calling thread (OpenMP's master) talks to the caller's callback.
+                if (progress && omp_get_thread_num() == 0 && done % reportEvery == 0 && !progress(double(done) / chunks))
+                    stop = true;
+            }
+            if (stop.load(std::memory_order_relaxed)) continue;
             linked.clear();
             for (const int *i = members.begin(a); i != members.end(a); ++i) {
                 const int *slot = graph.adjacency.data() + size_t(*i) * graph.stride;
@@ -290,6 +308,7 @@ inline std::vector<std::vector<int>> ClusterAdjacency(const NeighborGraph &graph
             adjacent[size_t(a)].assign(linked.begin(), linked.end());
         }
     }
+    if (cancelled) *cancelled = stop;
     return adjacent;
 }
 
@@ -340,8 +359,10 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
     if (!goOn(0)) return kRefinementCancelled;
     std::unique_ptr<const ClusterMembers> members(new ClusterMembers(clusters)); // freed before merging
     if (!goOn(0.05)) return kRefinementCancelled;
-    std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters, *members);
-    if (!goOn(0.1)) return kRefinementCancelled;
+    bool stopped = false;
+    std::vector<std::vector<int>> adjacent =
+        ClusterAdjacency(graph, clusters, *members, [&goOn](double done) { return goOn(0.05 + 0.05 * done); }, &stopped);
+    if (stopped || !goOn(0.1)) return kRefinementCancelled;
     MergeCostModel model(points, normals, clusters, *members, weightWidth);
     members.reset();
     if (!goOn(0.2)) return kRefinementCancelled;

@@ -423,8 +423,10 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     CheapestFirst pairs;
     if (distances.Max() > 0 && goOn()) { // reports between the steps: each takes seconds at 20 million points
         const ClusterMembers members(clusters);
-        const std::vector<std::vector<int>> adjacent = ClusterAdjacency(graph, clusters, members);
-        if (goOn()) {
+        bool stopped = false;
+        const std::vector<std::vector<int>> adjacent =
+            ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
+        if (!stopped && goOn()) {
             const MergeCostModel model(points, normals, clusters, members, weightWidth);
             if (goOn()) pairs = CheapestFirst(LinkedPairs(model, adjacent));
         }
