@@ -118,6 +118,24 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
         for (int i = 0; i < cube.Size(); ++i)
             ASSERT_NEAR(local.Distance(i), full.Distance(i), 1e-9 * diagonal) << "round " << round << " point " << i;
         EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
+        // The surfels blended at a point, read off a surface of the surfels near it, are those
+        // of the whole set's surface (facing the point, nearest first).
+        const vcg::tri::SurfelSurface whole = BlendedSurfaceOf(changed);
+        vcg::tri::SurfelSurface::Scratch scratch;
+        for (int i = 0; i < cube.Size(); i += 97) {
+            whole.Project(vcg::Point3d::Construct(cube.points[i]), vcg::Point3d::Construct(cube.normals[i]),
+                          vcg::tri::SurfelErrorParams().maxIterations,
+                          vcg::tri::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
+            std::vector<std::pair<float, int>> nearest;
+            for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
+                const int c = scratch.queue.getIndex(j);
+                if (changed[c].normal.dot(cube.normals[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
+            }
+            std::sort(nearest.begin(), nearest.end());
+            std::vector<int> expected;
+            for (const auto &e : nearest) expected.push_back(e.second);
+            EXPECT_EQ(local.BlendedAt(i, changed), expected) << "round " << round << " point " << i;
+        }
     }
 }
 
