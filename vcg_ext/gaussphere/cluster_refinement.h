@@ -343,6 +343,32 @@ inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std
     return pairs;
 }
 
+/// What MergeToCount and the exchanges merge by: each cluster's linked clusters and the cost model.
+struct MergeBasis
+{
+    std::vector<std::vector<int>> adjacent; ///< ClusterAdjacency
+    MergeCostModel model;
+};
+
+/// Builds the MergeBasis of `clusters` in steps (member lists, adjacency, cost model; each takes
+/// seconds at 20 million points), calling `progress(fraction)`, fraction in [0, 1), before each and
+/// within the adjacency; null when it returned false.
+inline std::unique_ptr<MergeBasis> BuildMergeBasis(const PointArray &points, const PointArray &normals,
+                                                   const NeighborGraph &graph, const Clustering &clusters,
+                                                   double weightWidth, const std::function<bool(double)> &progress)
+{
+    const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
+    if (!goOn(0)) return nullptr;
+    const ClusterMembers members(clusters);
+    if (!goOn(0.25)) return nullptr;
+    bool stopped = false;
+    std::vector<std::vector<int>> adjacent =
+        ClusterAdjacency(graph, clusters, members, [&goOn](double done) { return goOn(0.25 + 0.5 * done); }, &stopped);
+    if (stopped || !goOn(0.75)) return nullptr;
+    return std::unique_ptr<MergeBasis>(
+        new MergeBasis{std::move(adjacent), MergeCostModel(points, normals, clusters, members, weightWidth)});
+}
+
 /// Merges neighbouring clusters, cheapest first (MergeCostModel), until `target` remain (or no
 /// two clusters are linked by `graph`, using every neighbour found, not only the cone).
 /// Returns the number of merges; clusters are compacted afterwards.
@@ -356,16 +382,11 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
     const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
-    if (!goOn(0)) return kRefinementCancelled;
-    std::unique_ptr<const ClusterMembers> members(new ClusterMembers(clusters)); // freed before merging
-    if (!goOn(0.05)) return kRefinementCancelled;
-    bool stopped = false;
-    std::vector<std::vector<int>> adjacent =
-        ClusterAdjacency(graph, clusters, *members, [&goOn](double done) { return goOn(0.05 + 0.05 * done); }, &stopped);
-    if (stopped || !goOn(0.1)) return kRefinementCancelled;
-    MergeCostModel model(points, normals, clusters, *members, weightWidth);
-    members.reset();
-    if (!goOn(0.2)) return kRefinementCancelled;
+    const std::unique_ptr<MergeBasis> basis =
+        BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double done) { return goOn(0.2 * done); });
+    if (!basis || !goOn(0.2)) return kRefinementCancelled;
+    std::vector<std::vector<int>> &adjacent = basis->adjacent;
+    MergeCostModel &model = basis->model;
     std::vector<int> version(count, 0);
     std::vector<int> parent(count);
     for (int k = 0; k < count; ++k) parent[k] = k;

@@ -96,7 +96,7 @@ public:
         std::vector<float> reach;
         double max = 0;
         int worst = -1;
-        std::vector<int> changed;         ///< surfels that differ from the current set (ascending)
+        std::vector<int> fresh;           ///< surfels that differ from the set Reset measured (ascending)
     };
 
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
@@ -119,8 +119,7 @@ public:
             const int count = std::min(block, n - start);
             Project(*measured_, nullptr, start, count, distance_.data() + start, reach_.data() + start);
         }
-        for (int i = 0; i < n; ++i) // in point order: the same worst point for any thread count
-            if (worst_ < 0 || distance_[i] > max_) { max_ = distance_[i]; worst_ = i; }
+        for (int i = 0; i < n; ++i) KeepWorst(distance_[i], i, max_, worst_);
         return true;
     }
 
@@ -130,13 +129,16 @@ public:
     {
         Measure m;
         std::vector<vcg::Point3d> moved; // old and new centres of every surfel that changed
+        std::vector<int> changed;
         for (size_t c = 0; c < std::max(surfels.size(), current.size()); ++c) {
             const bool had = c < current.size(), has = c < surfels.size();
             if (had && has && Same(current[c], surfels[c])) continue;
             if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
             if (has) moved.push_back(vcg::Point3d::Construct(surfels[c].position));
-            m.changed.push_back(int(c));
+            changed.push_back(int(c));
         }
+        std::set_union(changed.begin(), changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
+                       std::back_inserter(m.fresh));
         const int n = int(points_.size());
         double untouchedMax = 0;
         int untouchedWorst = -1; // the first point of the largest distance: the same for any thread count
@@ -151,7 +153,7 @@ public:
                 const double r2 = double(reach_[i]) * reach_[i];
                 for (const vcg::Point3d &c : moved)
                     if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
-                if (!affected[i] && (localWorst < 0 || distance_[i] > localMax)) { localMax = distance_[i]; localWorst = i; }
+                if (!affected[i]) KeepWorst(distance_[i], i, localMax, localWorst);
             }
 #pragma omp critical
             if (localWorst >= 0 && (untouchedWorst < 0 || localMax > untouchedMax ||
@@ -166,25 +168,25 @@ public:
         m.distance.assign(count, 0.0);
         m.reach.assign(count, 0.f);
         if (count > 0) {
-            std::vector<int> fresh; // surfels not where the tree has them
-            std::set_union(m.changed.begin(), m.changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
-                           std::back_inserter(fresh));
             std::vector<int> local;
-            Project(LocalSurface(surfels, fresh, m.points, local), m.points.data(), 0, count, m.distance.data(),
+            Project(LocalSurface(surfels, m.fresh, m.points, local), m.points.data(), 0, count, m.distance.data(),
                     m.reach.data());
-            std::vector<int> beyond; // points whose new projection reached farther: on every surfel
+            std::vector<int> beyond, beyondPoint; // projections that reached farther (indices into m.points,
+                                                  // points): again on every surfel
             for (int t = 0; t < count; ++t)
-                if (!(m.reach[t] <= LocalRadius(m.points[t]))) beyond.push_back(m.points[t]);
+                if (!(m.reach[t] <= LocalRadius(m.points[t]))) { beyond.push_back(t); beyondPoint.push_back(m.points[t]); }
             if (!beyond.empty()) {
                 std::vector<double> distance(beyond.size());
                 std::vector<float> reach(beyond.size());
-                Project(BlendedSurfaceOf(surfels, metric_), beyond.data(), 0, int(beyond.size()), distance.data(), reach.data());
-                for (size_t b = 0, t = 0; b < beyond.size(); ++t)
-                    if (m.points[t] == beyond[b]) { m.distance[t] = distance[b]; m.reach[t] = reach[b]; ++b; }
+                Project(BlendedSurfaceOf(surfels, metric_), beyondPoint.data(), 0, int(beyond.size()), distance.data(),
+                        reach.data());
+                for (size_t b = 0; b < beyond.size(); ++b) {
+                    m.distance[size_t(beyond[b])] = distance[b];
+                    m.reach[size_t(beyond[b])] = reach[b];
+                }
             }
         }
-        for (int t = 0; t < count; ++t) // in point order: the same worst point for any thread count
-            if (m.worst < 0 || m.distance[t] > m.max) { m.max = m.distance[t]; m.worst = m.points[t]; }
+        for (int t = 0; t < count; ++t) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
     }
@@ -197,10 +199,7 @@ public:
         }
         max_ = m.max;
         worst_ = m.worst;
-        std::vector<int> changed;
-        std::set_union(m.changed.begin(), m.changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
-                       std::back_inserter(changed));
-        changedSinceReset_.swap(changed);
+        changedSinceReset_.swap(m.fresh);
     }
 
     double Distance(int i) const { return distance_[i]; }
@@ -228,6 +227,13 @@ public:
     }
 
 private:
+    /// Takes (distance, point) as the worst if it is the first or farther: called in point order,
+    /// the first point of the largest distance, the same for any thread count.
+    static void KeepWorst(double distance, int point, double &max, int &worst)
+    {
+        if (worst < 0 || distance > max) { max = distance; worst = point; }
+    }
+
     static bool Same(const Surfel &a, const Surfel &b)
     {
         return a.position == b.position && a.normal == b.normal && a.majorAxis == b.majorAxis &&
@@ -421,15 +427,10 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
     std::vector<char> settled(count, 0);
     CheapestFirst pairs;
-    if (distances.Max() > 0 && goOn()) { // reports between the steps: each takes seconds at 20 million points
-        const ClusterMembers members(clusters);
-        bool stopped = false;
-        const std::vector<std::vector<int>> adjacent =
-            ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
-        if (!stopped && goOn()) {
-            const MergeCostModel model(points, normals, clusters, members, weightWidth);
-            if (goOn()) pairs = CheapestFirst(LinkedPairs(model, adjacent));
-        }
+    if (distances.Max() > 0) {
+        const std::unique_ptr<MergeBasis> basis =
+            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double) { return goOn(); });
+        if (basis && goOn()) pairs = CheapestFirst(LinkedPairs(basis->model, basis->adjacent));
     }
     // One surfel set for every trial: its buffers (two surfels per cluster) are filled anew, not
     // allocated anew (fresh pages cost more than the copy on a virtual machine).
