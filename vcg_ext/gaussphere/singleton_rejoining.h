@@ -27,7 +27,11 @@ namespace vcg {
 namespace gaussphere {
 
 /// Below this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
-constexpr size_t kRejoinParallelMin = 4096;
+/// (Igea, 2 threads: the ~3,000 singletons left after each normalization round took 0.35 ms
+/// a pass on one thread, 0.2 ms on two.)
+constexpr size_t kRejoinParallelMin = 512;
+/// How many singletons ahead a pass fetches the next one's data.
+constexpr int kRejoinPrefetchAhead = 8;
 
 /// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
 /// Postcondition: clusters may contain empty labels; call Compact() when needed.
@@ -67,6 +71,12 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
 #pragma omp parallel for schedule(dynamic, 1024) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
+            // Singletons lie scattered: fetch a later one's neighbour list and label ahead
+            // (igea, 2 threads: the decisions 2.6 -> 2.1 ms a run).
+            if (s + kRejoinPrefetchAhead < int(singletons.size())) {
+                __builtin_prefetch(graph.begin(singletons[s + kRejoinPrefetchAhead]));
+                __builtin_prefetch(label.data() + singletons[s + kRejoinPrefetchAhead]);
+            }
             target[s] = -1;
             // After the first pass a singleton left over found no cluster; only a change in a
             // neighbour's cluster can give it one.
