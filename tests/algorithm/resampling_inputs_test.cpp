@@ -73,6 +73,20 @@ TEST(ResamplingInputs, UnusableVerticesAreSkippedAndCounted)
     // Containment is checked on the kept points only (the skipped ones have NaN data).
     gstest::ExpectValidResult(r, s, skipped);
     for (const Surfel &f : r.surfels) ASSERT_TRUE(std::isfinite(f.position[0]) && std::isfinite(f.normal[0]));
+    // The vertices are read in one range per thread and the ranges closed up: the same result
+    // for any count, also when the ranges hold different numbers of skipped vertices.
+    for (int i = 1; i < 700; i += 3) s.normals[i] = P3(0, 0, 0);
+    ResamplingResult one;
+    {
+        const gstest::ThreadCount t(1);
+        one = gstest::Resample(s);
+    }
+    for (int threads : {2, 3}) {
+        const gstest::ThreadCount t(threads);
+        const ResamplingResult many = gstest::Resample(s);
+        EXPECT_EQ(many.stats.skippedCount, one.stats.skippedCount);
+        EXPECT_EQ(many.representative, one.representative) << threads << " threads";
+    }
 }
 
 // Non-unit normals are normalized before use: scaling every normal changes nothing.

@@ -53,10 +53,13 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <omp.h>
 
 #include <vcg/complex/complex.h>
 
@@ -220,46 +223,56 @@ void Permute(const IndexArray &order, Vector &values)
 }
 
 /// The usable vertices of `mesh` (live, finite position, finite non-zero normal) as flat
-/// float arrays with unit normals; source[i] = the vertex of point i. Two parallel passes:
-/// which vertices are usable, then the copies at their prefix offsets (the flags and offsets
-/// are freed on return, before the neighbour search). Returns the number of deleted vertices.
+/// float arrays with unit normals; source[i] = the vertex of point i. One parallel pass: each
+/// thread copies the usable vertices of its range of the mesh to the front of the same range of
+/// the arrays, then the ranges are closed up (nothing moves when every vertex is usable, the
+/// usual case; igea, 2 threads: 2.6 -> 1.5 ms against two passes). Returns the number of
+/// deleted vertices.
 template <class MeshType>
 int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &normals, IndexArray &source)
 {
     const int vertexCount = int(mesh.vert.size());
-    FlatVector<char> usable(vertexCount);
+    points.resize(vertexCount);
+    normals.resize(vertexCount);
+    source.resize(vertexCount);
+    const int ranges = std::max(1, omp_get_max_threads());
+    const auto rangeBegin = [vertexCount, ranges](int r) { return int(std::int64_t(vertexCount) * r / ranges); };
+    std::vector<int> kept(size_t(ranges), 0);
     int deleted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : deleted)
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        const auto &v = mesh.vert[vi];
-        if (v.IsD()) {
-            usable[vi] = 0;
-            ++deleted;
-            continue;
+#pragma omp parallel for num_threads(ranges) schedule(static, 1) reduction(+ : deleted)
+    for (int r = 0; r < ranges; ++r) {
+        int next = rangeBegin(r);
+        for (int vi = rangeBegin(r); vi < rangeBegin(r + 1); ++vi) {
+            const auto &v = mesh.vert[vi];
+            if (v.IsD()) {
+                ++deleted;
+                continue;
+            }
+            const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
+            const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
+            const double len = nrm.Norm(); // double: very long normals stay finite
+            if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) && len > 1e-30))
+                continue;
+            points[next] = p;
+            normals[next] = vcg::Point3f::Construct(nrm / len);
+            source[next] = vi;
+            ++next;
         }
-        const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
-        const double len = vcg::Point3d::Construct(v.cN()).Norm(); // double: very long normals stay finite
-        usable[vi] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) &&
-                     len > 1e-30;
+        kept[size_t(r)] = next - rangeBegin(r);
     }
-    IndexArray slot(vertexCount);
-    int kept = 0;
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        slot[vi] = kept;
-        kept += usable[vi];
+    int total = 0;
+    for (int r = 0; r < ranges; ++r) {
+        const int from = rangeBegin(r), count = kept[size_t(r)];
+        if (from != total) { // forward moves: the destination lies before the source
+            std::copy(points.begin() + from, points.begin() + from + count, points.begin() + total);
+            std::copy(normals.begin() + from, normals.begin() + from + count, normals.begin() + total);
+            std::copy(source.begin() + from, source.begin() + from + count, source.begin() + total);
+        }
+        total += count;
     }
-    points.resize(kept);
-    normals.resize(kept);
-    source.resize(kept);
-#pragma omp parallel for schedule(static)
-    for (int vi = 0; vi < vertexCount; ++vi) {
-        if (!usable[vi]) continue;
-        const auto &v = mesh.vert[vi];
-        const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
-        points[slot[vi]] = vcg::Point3f::Construct(v.cP());
-        normals[slot[vi]] = vcg::Point3f::Construct(nrm / nrm.Norm());
-        source[slot[vi]] = vi;
-    }
+    points.resize(total);
+    normals.resize(total);
+    source.resize(total);
     return deleted;
 }
 
