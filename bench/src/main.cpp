@@ -20,7 +20,8 @@
 //     A CGAL peer that cannot be matched to our count is followed by a row "ours@PEER": ours
 //     at the peer's count, exact through TargetCount, measured but not timed.
 //     Times: "alg" is the median of R (default 3) in-process runs of the algorithm alone, after
-//     loading; "process" is the median wall time of R runs of `gsbench run` (load, run, save)
+//     loading, taken in rounds that run each timed method once in turn (InterleavedTimings:
+//     the ratios hold while a shared machine's load changes); "process" is the median wall time of R runs of `gsbench run` (load, run, save)
 //     or of meshlabserver, whose peak resident memory is reported too. --no-process skips the
 //     process runs (the figure-7 sweep needs only counts and errors).
 //     Beyond the paper (ResamplingParams::targetCount, maxErrorFraction), either or both:
@@ -45,6 +46,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -126,13 +128,30 @@ double Median(std::vector<double> values)
     return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
 }
 
-/// Median of `runs` timings of `timedRun`, which returns its own duration in seconds.
-double MedianSeconds(int runs, const std::function<double()> &timedRun)
+/// The in-process timings of the methods compared, taken in rounds: each round runs every timed
+/// method once, in turn, so that a change in the load of a shared machine between one method's
+/// runs and the next one's weighs on all of them alike and their ratios hold. Each method gets
+/// the median of its rounds.
+class InterleavedTimings
 {
-    std::vector<double> seconds;
-    for (int r = 0; r < runs; ++r) seconds.push_back(timedRun());
-    return Median(seconds);
-}
+public:
+    /// `timedRun` runs the method of result row `row` once and returns its own duration in seconds.
+    void Add(size_t row, std::function<double()> timedRun) { runs_.push_back({row, std::move(timedRun)}); }
+
+    /// Runs `rounds` rounds; returns (row, median seconds) for every method added.
+    std::vector<std::pair<size_t, double>> Run(int rounds) const
+    {
+        std::vector<std::vector<double>> seconds(runs_.size());
+        for (int round = 0; round < rounds; ++round)
+            for (size_t m = 0; m < runs_.size(); ++m) seconds[m].push_back(runs_[m].second());
+        std::vector<std::pair<size_t, double>> medians;
+        for (size_t m = 0; m < runs_.size(); ++m) medians.push_back({runs_[m].first, Median(seconds[m])});
+        return medians;
+    }
+
+private:
+    std::vector<std::pair<size_t, std::function<double()>>> runs_;
+};
 
 // ---------------------------------------------------------------------------------------------
 // Our resampler
@@ -378,10 +397,12 @@ int Compare(const std::string &inputPath, const Options &opt)
             r.dstarAboveFraction = defined ? double(above) / defined : kNaN;
         }
     };
+    // Rows are announced at the end, once the interleaved timings are in.
     auto finish = [&](Row &r) {
-        Announce(r);
         rows.push_back(r);
+        return rows.size() - 1;
     };
+    InterleavedTimings timings;
 
     // Ours fixes the count every peer is matched to.
     SimplifiedSet ours;
@@ -390,7 +411,6 @@ int Compare(const std::string &inputPath, const Options &opt)
         vcg::tri::SurfelErrorStats error;
         double errorAboveFraction = kNaN;
         // Without an "ours" row, one untimed run is enough to fix the target.
-        const int oursRuns = wanted("ours") ? runs : 1;
         if (!wanted("ours")) threadCounts.resize(1);
         for (int threads : threadCounts) {
             vcg::gaussphere::ResamplingResult result;
@@ -399,11 +419,7 @@ int Compare(const std::string &inputPath, const Options &opt)
             r.parameters = "n=" + std::to_string(level);
             if (config.targetCount > 0) r.parameters += " target=" + std::to_string(config.targetCount);
             if (maxError > 0) r.parameters += " max_error=" + Number(maxError);
-            r.timeAlg = MedianSeconds(oursRuns, [&]() {
-                double s = 0;
-                result = RunOurs(input, config, threads, &s);
-                return s;
-            });
+            result = RunOurs(input, config, threads, nullptr); // the output; timed in the rounds below
             r.levelUsed = result.stats.levelUsed;
             r.splitsForErrorBound = result.stats.splitsForErrorBound;
             r.splitsForSurfaceBound = result.stats.splitsForSurfaceBound;
@@ -436,7 +452,12 @@ int Compare(const std::string &inputPath, const Options &opt)
                 r.timeProcess = f.seconds;
                 r.peakMegabytes = f.peakMegabytes;
             }
-            if (wanted("ours")) finish(r);
+            if (wanted("ours"))
+                timings.Add(finish(r), [&input, config, threads]() {
+                    double s = 0;
+                    RunOurs(input, config, threads, &s);
+                    return s;
+                });
         }
     }
     const int target = ours.Count();
@@ -452,8 +473,10 @@ int Compare(const std::string &inputPath, const Options &opt)
     }
 
     // The CGAL peers: match, time the algorithm at the matched parameter, measure, run as a process.
+    std::unique_ptr<const CgalPointSet> cgalPoints; // outlives the block: the timed rounds run at the end
     if (wanted("cgal-hierarchy") || wanted("cgal-hierarchy-var") || wanted("cgal-grid")) {
-        const CgalPointSet cgal(input);
+        cgalPoints.reset(new CgalPointSet(input));
+        const CgalPointSet &cgal = *cgalPoints;
         struct CgalPeer
         {
             std::string method, parameters;
@@ -465,7 +488,7 @@ int Compare(const std::string &inputPath, const Options &opt)
         if (wanted("cgal-hierarchy")) {
             const HierarchyMatch m = MatchHierarchy(cgal, target, tolerance);
             peers.push_back({"cgal-hierarchy", m.param.ToString(), m.match,
-                             [&cgal, m](double *s) { return cgal.Hierarchy(m.param, s); },
+                             [points = &cgal, m](double *s) { return points->Hierarchy(m.param, s); },
                              {"--size", std::to_string(m.param.maxClusterSize), "--variation",
                               Number(m.param.maxVariation, 17)}});
         }
@@ -475,14 +498,14 @@ int Compare(const std::string &inputPath, const Options &opt)
             const int cap = int(std::ceil(4.0 * input.vn / target));
             const HierarchyMatch m = MatchHierarchyVariation(cgal, cap, target, tolerance);
             peers.push_back({"cgal-hierarchy-var", m.param.ToString(), m.match,
-                             [&cgal, m](double *s) { return cgal.Hierarchy(m.param, s); },
+                             [points = &cgal, m](double *s) { return points->Hierarchy(m.param, s); },
                              {"--size", std::to_string(m.param.maxClusterSize), "--variation",
                               Number(m.param.maxVariation, 17)}});
         }
         if (wanted("cgal-grid")) {
             const CountMatch m = MatchGrid(cgal, diagonal, target, tolerance);
             peers.push_back({"cgal-grid", "cell=" + Number(m.parameter / diagonal, 4) + "xdiag", m,
-                             [&cgal, m](double *s) { return cgal.Grid(m.parameter, s); },
+                             [points = &cgal, m](double *s) { return points->Grid(m.parameter, s); },
                              {"--cell", Number(m.parameter, 17)}});
         }
         for (const CgalPeer &peer : peers) {
@@ -491,12 +514,7 @@ int Compare(const std::string &inputPath, const Options &opt)
             r.parameters = peer.parameters;
             r.matched = peer.match.withinTolerance;
             r.evaluations = peer.match.evaluations;
-            std::vector<int> kept;
-            r.timeAlg = MedianSeconds(runs, [&]() {
-                double s = 0;
-                kept = peer.run(&s);
-                return s;
-            });
+            const std::vector<int> kept = peer.run(nullptr); // the output; timed in the rounds below
             SimplifiedSet set;
             CopySubset(input, kept, set.mesh);
             measure(r, set);
@@ -507,7 +525,11 @@ int Compare(const std::string &inputPath, const Options &opt)
                 r.timeProcess = f.seconds;
                 r.peakMegabytes = f.peakMegabytes;
             }
-            finish(r);
+            timings.Add(finish(r), [run = peer.run]() {
+                double s = 0;
+                run(&s);
+                return s;
+            });
             if (!peer.match.withinTolerance && wanted("ours") && set.Count() > 0) {
                 // The peer cannot reach our count (CGAL's hierarchy has no output between ~42 %
                 // and ~58 % of the input): compare at its count instead, ours exact by TargetCount
@@ -560,6 +582,8 @@ int Compare(const std::string &inputPath, const Options &opt)
         finish(r);
     }
 
+    for (const auto &timed : timings.Run(runs)) rows[timed.first].timeAlg = timed.second;
+    for (const Row &r : rows) Announce(r);
     WriteRows(csv, rows);
     return 0;
 }

@@ -215,6 +215,7 @@ private:
         const __m256i gather = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21); // floats per Point3: 3
         const __m128i seg = _mm_set1_epi32(segments_), segMinus1 = _mm_set1_epi32(segments_ - 1);
         const __m256d segments = _mm256_set1_pd(segments_), zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+        const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
         int g = 0;
         for (; g + 8 <= count; g += 8) {
             const float *base = &normals[g][0];
@@ -236,12 +237,15 @@ private:
                 const __m256d ny = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(y, 1) : _mm256_castps256_ps128(y));
                 const __m256d nz = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(z, 1) : _mm256_castps256_ps128(z));
                 const __m128i row = _mm_mullo_epi32(face, _mm_set1_epi32(9));
+                // Masked gathers with a zero source: the plain ones leave GCC 12 warning of an
+                // undefined source.
                 __m256d b[3];
                 for (int r = 0; r < 3; ++r) {
-                    const double *inv = faceInverse_.data() + 3 * r;
-                    b[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_i32gather_pd(inv, row, 8), nx),
-                                                       _mm256_mul_pd(_mm256_i32gather_pd(inv + 1, row, 8), ny)),
-                                         _mm256_mul_pd(_mm256_i32gather_pd(inv + 2, row, 8), nz));
+                    __m256d entry[3];
+                    for (int c = 0; c < 3; ++c)
+                        entry[c] = _mm256_mask_i32gather_pd(zero, faceInverse_.data() + 3 * r + c, row, all, 8);
+                    b[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(entry[0], nx), _mm256_mul_pd(entry[1], ny)),
+                                         _mm256_mul_pd(entry[2], nz));
                 }
                 const __m256d sum = _mm256_add_pd(_mm256_add_pd(b[0], b[1]), b[2]);
                 // std::max(0.0, q) is q > 0 ? q : 0 (NaN: 0), as is max_pd(q, 0).
