@@ -3,7 +3,7 @@
 //
 //   gsbench compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]
 //                   [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]
-//                   [--tolerance F] [--no-process] [--target-percent P] [--max-error E]
+//                   [--tolerance F] [--no-process] [--trim-heap] [--target-percent P] [--max-error E]
 //     Runs our resampler at level N (default 8), tunes every peer in LIST to the same count
 //     (+- F, default 0.02), measures each output, and appends one CSV row per method to OUT.csv
 //     (default stdout). LIST (default: all) is a comma-separated subset of
@@ -21,7 +21,9 @@
 //     at the peer's count, exact through TargetCount, measured but not timed.
 //     Times: "alg" is the median of R (default 3) in-process runs of the algorithm alone, after
 //     loading, taken in rounds that run each timed method once in turn (InterleavedTimings:
-//     the ratios hold while a shared machine's load changes); "process" is the median wall time of R runs of `gsbench run` (load, run, save)
+//     the ratios hold while a shared machine's load changes; --trim-heap returns the heap's free
+//     memory to the system before each run, so that every run faults its heap pages in as a
+//     first call does); "process" is the median wall time of R runs of `gsbench run` (load, run, save)
 //     or of meshlabserver, whose peak resident memory is reported too. --no-process skips the
 //     process runs (the figure-7 sweep needs only counts and errors).
 //     Beyond the paper (ResamplingParams::targetCount, maxErrorFraction), either or both:
@@ -45,6 +47,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <malloc.h>
 #include <map>
 #include <memory>
 #include <set>
@@ -81,7 +84,7 @@ public:
         for (int a = first; a < argc; ++a) {
             const std::string key = argv[a];
             if (key.rfind("--", 0) != 0) throw std::invalid_argument("unexpected argument " + key);
-            if (key == "--no-process") { values_[key] = "1"; continue; }
+            if (key == "--no-process" || key == "--trim-heap") { values_[key] = "1"; continue; }
             if (a + 1 >= argc) throw std::invalid_argument(key + " needs a value");
             values_[key] = argv[++a];
         }
@@ -138,12 +141,17 @@ public:
     /// `timedRun` runs the method of result row `row` once and returns its own duration in seconds.
     void Add(size_t row, std::function<double()> timedRun) { runs_.push_back({row, std::move(timedRun)}); }
 
-    /// Runs `rounds` rounds; returns (row, median seconds) for every method added.
-    std::vector<std::pair<size_t, double>> Run(int rounds) const
+    /// Runs `rounds` rounds; returns (row, median seconds) for every method added. With
+    /// `trimHeap`, the heap's free memory goes back to the system before every run (malloc_trim):
+    /// each run faults its heap pages in afresh, as a first call in a process does.
+    std::vector<std::pair<size_t, double>> Run(int rounds, bool trimHeap) const
     {
         std::vector<std::vector<double>> seconds(runs_.size());
         for (int round = 0; round < rounds; ++round)
-            for (size_t m = 0; m < runs_.size(); ++m) seconds[m].push_back(runs_[m].second());
+            for (size_t m = 0; m < runs_.size(); ++m) {
+                if (trimHeap) malloc_trim(0);
+                seconds[m].push_back(runs_[m].second());
+            }
         std::vector<std::pair<size_t, double>> medians;
         for (size_t m = 0; m < runs_.size(); ++m) medians.push_back({runs_[m].first, Median(seconds[m])});
         return medians;
@@ -327,6 +335,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     const int runs = std::max(1, opt.Int("--runs", 3));
     const double tolerance = opt.Real("--tolerance", 0.02);
     const bool process = !opt.Has("--no-process");
+    const bool trimHeap = opt.Has("--trim-heap");
     const std::string csv = opt.Get("--csv", "-");
     const std::string work = opt.Get("--work", "/tmp/gsbench");
     const std::string meshlabserver = opt.Get("--meshlabserver", "");
@@ -582,7 +591,7 @@ int Compare(const std::string &inputPath, const Options &opt)
         finish(r);
     }
 
-    for (const auto &timed : timings.Run(runs)) rows[timed.first].timeAlg = timed.second;
+    for (const auto &timed : timings.Run(runs, trimHeap)) rows[timed.first].timeAlg = timed.second;
     for (const Row &r : rows) Announce(r);
     WriteRows(csv, rows);
     return 0;
@@ -632,7 +641,7 @@ int Usage(const char *program)
     std::fprintf(stderr,
                  "usage: %s compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]\n"
                  "                  [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]\n"
-                 "                  [--tolerance F] [--no-process] [--target-percent P] [--max-error E]\n"
+                 "                  [--tolerance F] [--no-process] [--trim-heap] [--target-percent P] [--max-error E]\n"
                  "       %s run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]\n"
                  "                  [--variation V] [--cell C] [--target-count C] [--max-error E]\n"
                  "(see the comment at the top of bench/src/main.cpp)\n",
