@@ -174,6 +174,24 @@ TEST(PointGrid, PortableKernelsMatchBruteForce)
     avx2 = before;
 }
 
+// Grids too large for a dense cell array look cells up in a hash table: the cases above again
+// (crowded cells, planar and integer lattices) with every grid using the table.
+TEST(PointGrid, HashedCellTableMatchesBruteForce)
+{
+    bool &dense = PointGrid::DenseCellTables();
+    const bool before = dense;
+    dense = false;
+    ExpectExactAllKNearest(SpherePoints(3000, 1), 16);
+    PointArray crowded = SpherePoints(400, 7);
+    for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
+    ExpectExactAllKNearest(crowded, 16);
+    PointArray planar;
+    for (int x = 0; x < 40; ++x)
+        for (int y = 0; y < 40; ++y) planar.push_back(P3(x * 0.1f, y * 0.1f, 0));
+    ExpectExactAllKNearest(planar, 16);
+    dense = before;
+}
+
 } // namespace
 
 namespace {
