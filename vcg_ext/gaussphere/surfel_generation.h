@@ -212,13 +212,12 @@ inline Surfel MakeSurfel(const PointArray &points, const PointArray &normals, co
 }
 
 /// One surfel per cluster, in cluster order. `spacing` is the per-point local sample
-/// spacing (NeighborGraph::spacing). Preconditions: unit normals for all clustered points.
-inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
-                                           const PointArray &normals,
+/// spacing (NeighborGraph::spacing); members = ClusterMembers(clusters). Preconditions: unit
+/// normals for all clustered points.
+inline std::vector<Surfel> GenerateSurfels(const PointArray &points, const PointArray &normals,
                                            const FlatVector<float> &spacing, const Clustering &clusters,
-                                           const SurfelGenerationParams &param)
+                                           const ClusterMembers &members, const SurfelGenerationParams &param)
 {
-    const ClusterMembers members(clusters);
     std::vector<Surfel> surfels(clusters.clusterCount);
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < clusters.clusterCount; ++c) {
@@ -226,6 +225,13 @@ inline std::vector<Surfel> GenerateSurfels(const PointArray &points,
         if (param.blendScale && c < int(param.blendScale->size())) surfels[c].blendScale = (*param.blendScale)[c];
     }
     return surfels;
+}
+/// The same, the member lists built here.
+inline std::vector<Surfel> GenerateSurfels(const PointArray &points, const PointArray &normals,
+                                           const FlatVector<float> &spacing, const Clustering &clusters,
+                                           const SurfelGenerationParams &param)
+{
+    return GenerateSurfels(points, normals, spacing, clusters, ClusterMembers(clusters), param);
 }
 
 } // namespace gaussphere

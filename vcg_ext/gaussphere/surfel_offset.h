@@ -192,16 +192,16 @@ inline void MoveSurfel(Surfel &s, float offset)
 /// before: the error bound's own-plane stage holds): a move is cut short so that every member
 /// stays within 0.99 x maxPlaneDistance (the rest absorbs the rounding of the float position),
 /// and where none can, the surfel stays.
-/// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); `graph` is the
-///      neighbour graph of `points` (unit `normals`); creasePoints, if given, has one flag per point.
+/// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); members =
+///      ClusterMembers(clusters); `graph` is the neighbour graph of `points` (unit `normals`);
+///      creasePoints, if given, has one flag per point.
 /// \post Only positions change, each surfel's fitOffset by the same move; the result does not
 ///       depend on the thread count.
 inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals,
                                            const NeighborGraph &graph, const Clustering &clusters,
-                                           const FlatVector<char> *creasePoints, std::vector<Surfel> &surfels,
-                                           double maxPlaneDistance = 0)
+                                           const ClusterMembers &members, const FlatVector<char> *creasePoints,
+                                           std::vector<Surfel> &surfels, double maxPlaneDistance = 0)
 {
-    const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
     std::vector<detail::BlendWeight> weight(count);
 #pragma omp parallel for schedule(static)
@@ -220,6 +220,15 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
         result.largest = std::max(result.largest, double(std::abs(offset[c])));
     }
     return result;
+}
+/// The same, the member lists built here.
+inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const PointArray &normals,
+                                           const NeighborGraph &graph, const Clustering &clusters,
+                                           const FlatVector<char> *creasePoints, std::vector<Surfel> &surfels,
+                                           double maxPlaneDistance = 0)
+{
+    return FitSurfelOffsets(points, normals, graph, clusters, ClusterMembers(clusters), creasePoints, surfels,
+                            maxPlaneDistance);
 }
 
 } // namespace gaussphere

@@ -31,12 +31,13 @@ struct SurfelRecipe
     const FlatVector<char> *creasePoints = nullptr; ///< clusters holding one are not fitted
 };
 
-/// The surfels of `clusters` by `recipe` before the fit: generated, blends narrowed around creases.
+/// The surfels of `clusters` (members = ClusterMembers(clusters)) by `recipe` before the fit:
+/// generated, blends narrowed around creases.
 inline std::vector<Surfel> UnfittedSurfels(const PointArray &points, const PointArray &normals,
                                            const NeighborGraph &graph, const Clustering &clusters,
-                                           const SurfelRecipe &recipe)
+                                           const ClusterMembers &members, const SurfelRecipe &recipe)
 {
-    std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, clusters, recipe.generation);
+    std::vector<Surfel> surfels = GenerateSurfels(points, normals, graph.spacing, clusters, members, recipe.generation);
     NarrowBlendsAroundCreases(graph, clusters, recipe.creaseBlendScale, surfels);
     return surfels;
 }
@@ -48,10 +49,11 @@ inline std::vector<Surfel> MakeSurfels(const PointArray &points, const PointArra
                                        const Clustering &clusters, const SurfelRecipe &recipe,
                                        const std::function<void()> &beforeFit = nullptr)
 {
-    std::vector<Surfel> surfels = UnfittedSurfels(points, normals, graph, clusters, recipe);
+    const ClusterMembers members(clusters); // built once for both steps
+    std::vector<Surfel> surfels = UnfittedSurfels(points, normals, graph, clusters, members, recipe);
     if (recipe.fitOffsets) {
         if (beforeFit) beforeFit();
-        FitSurfelOffsets(points, normals, graph, clusters, recipe.creasePoints, surfels);
+        FitSurfelOffsets(points, normals, graph, clusters, members, recipe.creasePoints, surfels);
     }
     return surfels;
 }
@@ -93,10 +95,12 @@ public:
     Set Make(const Clustering &clusters, const std::function<void()> &beforeFit = nullptr) const
     {
         Set s;
-        s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, recipe_);
+        const ClusterMembers members(clusters);
+        s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, members, recipe_);
         if (beforeFit) beforeFit();
         s.fitted = s.unfitted;
-        if (recipe_.fitOffsets) FitSurfelOffsets(points_, normals_, graph_, clusters, recipe_.creasePoints, s.fitted);
+        if (recipe_.fitOffsets)
+            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.creasePoints, s.fitted);
         return s;
     }
 
