@@ -269,6 +269,26 @@ TEST(MaxErrorExchange, CancelledFromTheCallback)
     EXPECT_NO_THROW(ResamplePointSet(m, AtTarget(100, 0), stopAtExchanges));
 }
 
+namespace {
+int gExchangeReports = 0;
+bool stopAtSecondExchangeReport(int, const char *what)
+{
+    return std::string(what).find("exchanges") == std::string::npos || ++gExchangeReports < 2;
+}
+} // namespace
+
+// The second report comes between the first surfels' generation and their fit: a cancel there
+// skips the fit and ends the exchange without another report.
+TEST(MaxErrorExchange, CancelBeforeTheFirstFitStopsAtOnce)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(16, true);
+    OrientedPointMesh m;
+    gstest::ToMesh(cube, m);
+    gExchangeReports = 0;
+    EXPECT_THROW(ResamplePointSet(m, AtTarget(100, 16), stopAtSecondExchangeReport), ResamplingCancelled);
+    EXPECT_EQ(gExchangeReports, 2);
+}
+
 // The merge pairs are sorted as they are read, in chunks: the same order as sorting them all.
 TEST(MaxErrorExchange, CheapestFirstReadsInSortedOrder)
 {

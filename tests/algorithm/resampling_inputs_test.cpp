@@ -299,4 +299,13 @@ TEST(ResamplingInputs, CancelWhileMergingToATargetSize)
     EXPECT_EQ(StageReportsUntilCancelled("merging clusters", 2, param), 2);
 }
 
+// Between two levels' counts, the splits to the target report (when they start, then every few
+// thousand splits) and cancel too.
+TEST(ResamplingInputs, CancelWhileSplittingToATargetSize)
+{
+    ResamplingParams param;
+    param.targetCount = 150; // level 3, then 62 splits
+    EXPECT_EQ(StageReportsUntilCancelled("splitting clusters", 1, param), 1);
+}
+
 } // namespace

@@ -111,6 +111,25 @@ TEST(SurfelRecipe, UpdateEqualsMake)
     EXPECT_GT(exchangesChecked, 10);
 }
 
+// Make's report between generation and fit can stop the fit (a cancel): the set's fitted
+// surfels are then the unfitted ones; a report that goes on changes nothing.
+TEST(SurfelRecipe, MakeSkipsTheFitWhenTheReportSaysStop)
+{
+    const Scene scene;
+    const SurfelMaker maker(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
+    const SurfelMaker::Set whole = maker.Make(scene.clusters);
+    int reports = 0;
+    const SurfelMaker::Set goOn = maker.Make(scene.clusters, [&reports]() { return ++reports > 0; });
+    EXPECT_EQ(reports, 1);
+    ExpectSameSurfels(goOn.fitted, whole.fitted, "report going on");
+    const SurfelMaker::Set stopped = maker.Make(scene.clusters, []() { return false; });
+    ExpectSameSurfels(stopped.unfitted, whole.unfitted, "stopped, unfitted");
+    ExpectSameSurfels(stopped.fitted, whole.unfitted, "stopped, fitted");
+    int moved = 0;
+    for (const Surfel &f : whole.fitted) moved += f.fitOffset != 0;
+    EXPECT_GT(moved, 0) << "the scene's fit moves no surfel: the test would not see a skipped fit";
+}
+
 // Without a fit or narrowing, the update is the changed clusters' surfels alone.
 TEST(SurfelRecipe, UpdateWithoutAdjustments)
 {

@@ -379,7 +379,8 @@ private:
 /// `diagonal` of the points. `progress(round)` is called before the first measure, between its
 /// steps (generation, fit, blocks of points, the merge pairs' set-up) and before each trial (round
 /// from 0); when it returns false the exchange stops with cancelled = true and the clusters of the
-/// last kept exchange. On return `surfels` holds maker.Make(clusters).fitted.
+/// last kept exchange. On return `surfels` holds maker.Make(clusters).fitted (unfitted when the
+/// cancel came between their generation and fit).
 /// Nothing is tried with fewer than 3 clusters, weightWidth <= 0 (no merge cost) or every point
 /// on the surface already.
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
@@ -410,8 +411,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         surfels = maker.MakeFitted(clusters);
         return result;
     }
-    SurfelMaker::Set current = maker.Make(clusters, goOn);
-    if (!goOn() || !distances.Reset(current.fitted, goOn)) {
+    SurfelMaker::Set current = maker.Make(clusters, goOn); // unfitted if cancelled before the fit
+    if (result.cancelled || !goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);
         return result;
     }

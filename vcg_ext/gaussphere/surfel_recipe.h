@@ -91,15 +91,17 @@ public:
         return MakeSurfels(points_, normals_, graph_, clusters, recipe_);
     }
 
-    /// `beforeFit`, if given, is called between generation and fit (a progress report).
-    Set Make(const Clustering &clusters, const std::function<void()> &beforeFit = nullptr) const
+    /// `beforeFit`, if given, is called between generation and fit (a progress report); when it
+    /// returns false the fit is skipped (a cancel: seconds at tens of millions of points) and the
+    /// set's fitted surfels are the unfitted ones.
+    Set Make(const Clustering &clusters, const std::function<bool()> &beforeFit = nullptr) const
     {
         Set s;
         const ClusterMembers members(clusters);
         s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, members, recipe_);
-        if (beforeFit) beforeFit();
+        const bool fit = !beforeFit || beforeFit();
         s.fitted = s.unfitted;
-        if (recipe_.fitOffsets)
+        if (fit && recipe_.fitOffsets)
             FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.creasePoints, s.fitted);
         return s;
     }
