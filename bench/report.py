@@ -308,7 +308,9 @@ def write_table1(rows, out_dir, header):
         header,
         "## Table 1: every model, every method",
         "Peers are matched to our count within ±2 % (a row says so when the search failed). "
-        "`alg` is the median in-process time of the algorithm alone after loading; `process` the "
+        "`alg` is the median in-process time of the algorithm alone after loading, over rounds in "
+        "which every timed method runs once in turn (a change in the shared machine's load weighs on "
+        "all alike); `process` the "
         "median wall time of a process that loads, runs and saves (for MeshLab: meshlabserver, "
         "whose start-up loads ~75 plugins); `peak MB` its ru_maxrss. The `ours, 2 threads` row has "
         "the same output as the 1-thread row. L2,1 *own* measures each input normal against the "
