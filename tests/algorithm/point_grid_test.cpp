@@ -152,13 +152,12 @@ TEST(PointGrid, ExactTiesMatchBruteForce)
     }
 }
 
-// The portable loops (used on CPUs without AVX2) give the same exact answers as the AVX2
-// kernels: the cases above again, with the kernels switched off.
-TEST(PointGrid, PortableKernelsMatchBruteForce)
+/// With `setting` (a PointGrid switch) set to false: a sphere, crowded cells, planar and integer
+/// lattices against brute force. Restores the setting.
+void ExpectExactWithSwitchOff(bool &setting)
 {
-    bool &avx2 = PointGrid::Avx2Kernels();
-    const bool before = avx2;
-    avx2 = false;
+    const bool before = setting;
+    setting = false;
     ExpectExactAllKNearest(SpherePoints(3000, 1), 16);
     PointArray crowded = SpherePoints(400, 7);
     for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
@@ -171,26 +170,16 @@ TEST(PointGrid, PortableKernelsMatchBruteForce)
     for (int x = 0; x < 24; ++x)
         for (int y = 0; y < 24; ++y) integer.push_back(P3(float(x), float(y), 0));
     for (int k : {12, 16}) ExpectExactAllKNearest(integer, k);
-    avx2 = before;
+    setting = before;
 }
 
-// Grids too large for a dense cell array look cells up in a hash table: the cases above again
-// (crowded cells, planar and integer lattices) with every grid using the table.
-TEST(PointGrid, HashedCellTableMatchesBruteForce)
-{
-    bool &dense = PointGrid::DenseCellTables();
-    const bool before = dense;
-    dense = false;
-    ExpectExactAllKNearest(SpherePoints(3000, 1), 16);
-    PointArray crowded = SpherePoints(400, 7);
-    for (int c = 0; c < 300; ++c) crowded.push_back(crowded[c % 3]);
-    ExpectExactAllKNearest(crowded, 16);
-    PointArray planar;
-    for (int x = 0; x < 40; ++x)
-        for (int y = 0; y < 40; ++y) planar.push_back(P3(x * 0.1f, y * 0.1f, 0));
-    ExpectExactAllKNearest(planar, 16);
-    dense = before;
-}
+// The portable loops (used on CPUs without AVX2) give the same exact answers as the AVX2
+// kernels: the hard cases again, with the kernels switched off.
+TEST(PointGrid, PortableKernelsMatchBruteForce) { ExpectExactWithSwitchOff(PointGrid::Avx2Kernels()); }
+
+// Grids too large for a dense cell array look cells up in a hash table: the same cases with
+// every grid using the table.
+TEST(PointGrid, HashedCellTableMatchesBruteForce) { ExpectExactWithSwitchOff(PointGrid::DenseCellTables()); }
 
 } // namespace
 

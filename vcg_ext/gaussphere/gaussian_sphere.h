@@ -27,11 +27,8 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-// The batched lookup's AVX2 kernel, chosen at run time (GCC/Clang on x86-64).
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define GAUSSPHERE_SPHERE_AVX2 1
-#include <immintrin.h>
-#endif
+
+#include "cpu_dispatch.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -93,7 +90,7 @@ public:
     void TrianglesOf(const Point3 *normals, int count, int *triangles) const
     {
         int i = 0;
-#ifdef GAUSSPHERE_SPHERE_AVX2
+#ifdef GAUSSPHERE_X86_DISPATCH
         if (base_ == BasePolyhedron::Icosahedron && Avx2Kernels()) i = TrianglesOfAvx2(normals, count, triangles);
 #endif
         for (; i < count; ++i) triangles[i] = TriangleOf(normals[i]);
@@ -103,11 +100,7 @@ public:
     /// false runs TriangleOf alone (same results), e.g. to test the kernel against it.
     static bool &Avx2Kernels()
     {
-#ifdef GAUSSPHERE_SPHERE_AVX2
-        static bool on = __builtin_cpu_supports("avx2");
-#else
-        static bool on = false;
-#endif
+        static bool on = CpuHasAvx2();
         return on;
     }
 
@@ -205,7 +198,7 @@ private:
 #endif
     }
 
-#ifdef GAUSSPHERE_SPHERE_AVX2
+#ifdef GAUSSPHERE_X86_DISPATCH
     /// TrianglesOf's kernel for the icosahedron, whole groups of eight; returns where it stopped.
     /// The face: the largest dot product with the face centres, the first of equals (TriangleOf
     /// takes the same in four lanes, then the lowest face among equal lanes). The barycentric

@@ -43,14 +43,9 @@
 #include <vcg/space/point3.h>
 
 #include "counting_sort.h"
+#include "cpu_dispatch.h"
 #include "flat_vector.h"
 #include "point_kdtree.h"
-
-// AVX2 kernels chosen at run time (GCC/Clang on x86-64); elsewhere the portable loops only.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define GAUSSPHERE_X86_DISPATCH 1
-#include <immintrin.h>
-#endif
 
 namespace vcg {
 namespace gaussphere {
@@ -152,11 +147,7 @@ public:
     /// to false runs the portable loops (same results), e.g. to test them on such a CPU.
     static bool &Avx2Kernels()
     {
-#ifdef GAUSSPHERE_X86_DISPATCH
-        static bool on = __builtin_cpu_supports("avx2");
-#else
-        static bool on = false;
-#endif
+        static bool on = CpuHasAvx2();
         return on;
     }
 
