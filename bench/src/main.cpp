@@ -47,7 +47,6 @@
 #include <fstream>
 #include <functional>
 #include <limits>
-#include <malloc.h>
 #include <map>
 #include <memory>
 #include <set>
@@ -57,6 +56,9 @@
 #include <vector>
 
 #include <omp.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <sys/stat.h>
 
 #include <vcg_ext/gaussphere/resampling.h>
@@ -131,6 +133,14 @@ double Median(std::vector<double> values)
     return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
 }
 
+/// Returns the heap's free memory to the system (glibc; elsewhere nothing to do).
+void TrimHeap()
+{
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
+
 /// The in-process timings of the methods compared, taken in rounds: each round runs every timed
 /// method once, in turn, so that a change in the load of a shared machine between one method's
 /// runs and the next one's weighs on all of them alike and their ratios hold. Each method gets
@@ -147,9 +157,11 @@ public:
     std::vector<std::pair<size_t, double>> Run(int rounds, bool trimHeap) const
     {
         std::vector<std::vector<double>> seconds(runs_.size());
+        // Each round starts one method later, so that no method always follows the same one.
         for (int round = 0; round < rounds; ++round)
-            for (size_t m = 0; m < runs_.size(); ++m) {
-                if (trimHeap) malloc_trim(0);
+            for (size_t step = 0; step < runs_.size(); ++step) {
+                const size_t m = (size_t(round) + step) % runs_.size();
+                if (trimHeap) TrimHeap();
                 seconds[m].push_back(runs_[m].second());
             }
         std::vector<std::pair<size_t, double>> medians;

@@ -5,7 +5,9 @@
 #ifndef VCG_EXT_GAUSSPHERE_CPU_DISPATCH_H
 #define VCG_EXT_GAUSSPHERE_CPU_DISPATCH_H
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// Not in builds that let the compiler fuse multiplies and adds (-mfma, -march=native): there it
+// may round the portable loops differently from the kernels, whose results must be the same.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__FMA__)
 #define GAUSSPHERE_X86_DISPATCH 1
 #include <immintrin.h>
 #endif

@@ -379,8 +379,8 @@ private:
 /// `diagonal` of the points. `progress(round)` is called before the first measure, between its
 /// steps (generation, fit, blocks of points, the merge pairs' set-up) and before each trial (round
 /// from 0); when it returns false the exchange stops with cancelled = true and the clusters of the
-/// last kept exchange. On return `surfels` holds maker.Make(clusters).fitted (unfitted when the
-/// cancel came between their generation and fit).
+/// last kept exchange. On return `surfels` holds maker.Make(clusters).fitted; when cancelled, they
+/// may be unfitted or not made at all (a cancelled run is discarded).
 /// Nothing is tried with fewer than 3 clusters, weightWidth <= 0 (no merge cost) or every point
 /// on the surface already.
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
@@ -407,10 +407,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         return !result.cancelled;
     };
     BlendedDistances distances(points, normals, diagonal);
-    if (!goOn()) {
-        surfels = maker.MakeFitted(clusters);
-        return result;
-    }
+    if (!goOn()) return result; // cancelled: the caller discards the run
     SurfelMaker::Set current = maker.Make(clusters, goOn); // unfitted if cancelled before the fit
     if (result.cancelled || !goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);

@@ -26,7 +26,7 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Below this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
+/// Up to this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
 /// (Igea, 2 threads: the ~3,000 singletons left after each normalization round took 0.35 ms
 /// a pass on one thread, 0.2 ms on two.)
 constexpr size_t kRejoinParallelMin = 512;
@@ -68,7 +68,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
         // Decisions against the clustering as it was before the pass. Later passes have few
         // singletons left, for which threads would cost more than they save.
-#pragma omp parallel for schedule(dynamic, 1024) if (singletons.size() > kRejoinParallelMin)
+#pragma omp parallel for schedule(dynamic, 256) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
             // Singletons lie scattered: fetch a later one's neighbour list and label ahead

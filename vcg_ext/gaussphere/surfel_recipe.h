@@ -91,9 +91,9 @@ public:
         return MakeSurfels(points_, normals_, graph_, clusters, recipe_);
     }
 
-    /// `beforeFit`, if given, is called between generation and fit (a progress report); when it
-    /// returns false the fit is skipped (a cancel: seconds at tens of millions of points) and the
-    /// set's fitted surfels are the unfitted ones.
+    /// `beforeFit`, if given, is called between generation and fit (a progress report; also when
+    /// the recipe fits nothing); when it returns false the fit is skipped (a cancel: seconds at
+    /// tens of millions of points) and the set's fitted surfels are the unfitted ones.
     Set Make(const Clustering &clusters, const std::function<bool()> &beforeFit = nullptr) const
     {
         Set s;
