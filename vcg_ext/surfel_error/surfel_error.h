@@ -272,6 +272,10 @@ public:
         tree_.Within(x, radius, indices, scratch);
     }
 
+    /// The tree of the centers, the surface given up (for a caller that only queries centers
+    /// afterwards: the blending data is ~3/4 of a surface's memory).
+    CenterTree ReleaseTree() && { return std::move(tree_); }
+
     /// Per-thread working memory of Project().
     struct Scratch
     {
@@ -514,6 +518,7 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
 
 } // namespace surfel_error_detail
 
+using surfel_error_detail::CenterTree;
 using surfel_error_detail::SurfelSurface;
 
 /** The surface of elliptical surfels given as arrays (what a resampler has before any mesh is
