@@ -270,23 +270,27 @@ TEST(MaxErrorExchange, CancelledFromTheCallback)
 }
 
 namespace {
-int gExchangeReports = 0;
-bool stopAtSecondExchangeReport(int, const char *what)
+int gExchangeReports = 0, gCancelAtExchangeReport = 0;
+bool stopAtNthExchangeReport(int, const char *what)
 {
-    return std::string(what).find("exchanges") == std::string::npos || ++gExchangeReports < 2;
+    return std::string(what).find("exchanges") == std::string::npos || ++gExchangeReports < gCancelAtExchangeReport;
 }
 } // namespace
 
-// The second report comes between the first surfels' generation and their fit: a cancel there
-// skips the fit and ends the exchange without another report.
-TEST(MaxErrorExchange, CancelBeforeTheFirstFitStopsAtOnce)
+// Wherever the cancel comes (the merge pairs' set-up, between the first surfels' generation and
+// fit, the first measure, a trial), the exchange ends without another report (a cancel between
+// generation and fit used to run the fit and report once more).
+TEST(MaxErrorExchange, CancelStopsAtOnceAtEveryReport)
 {
     const gstest::PointSet cube = gstest::CubeSurface(16, true);
     OrientedPointMesh m;
     gstest::ToMesh(cube, m);
-    gExchangeReports = 0;
-    EXPECT_THROW(ResamplePointSet(m, AtTarget(100, 16), stopAtSecondExchangeReport), ResamplingCancelled);
-    EXPECT_EQ(gExchangeReports, 2);
+    for (int n = 1; n <= 12; ++n) {
+        gExchangeReports = 0;
+        gCancelAtExchangeReport = n;
+        EXPECT_THROW(ResamplePointSet(m, AtTarget(100, 16), stopAtNthExchangeReport), ResamplingCancelled) << n;
+        EXPECT_EQ(gExchangeReports, n);
+    }
 }
 
 // The merge pairs are sorted as they are read, in chunks: the same order as sorting them all.

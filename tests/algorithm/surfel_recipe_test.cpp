@@ -111,6 +111,35 @@ TEST(SurfelRecipe, UpdateEqualsMake)
     EXPECT_GT(exchangesChecked, 10);
 }
 
+// A maker whose graph was cut to the fit's slots (KeepFirstSlots, as the exchanges do) makes
+// and updates the same surfels as one on the whole graph: the narrowed blends come from flags
+// taken at construction, the fit reads no further.
+TEST(SurfelRecipe, MakeAndUpdateNeedOnlyTheFitsSlots)
+{
+    const Scene scene;
+    const SurfelMaker whole(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
+    NeighborGraph cut = scene.graph;
+    SurfelRecipe recipe = scene.recipe;
+    recipe.creasePoints = &cut.crease;
+    const SurfelMaker maker(scene.s.points, scene.s.normals, cut, recipe);
+    KeepFirstSlots(cut, kOffsetNeighbors);
+    ASSERT_EQ(cut.stride, kOffsetNeighbors);
+    ASSERT_LT(cut.adjacency.size(), scene.graph.adjacency.size());
+    const SurfelMaker::Set base = maker.Make(scene.clusters);
+    ExpectSameSurfels(base.fitted, whole.Make(scene.clusters).fitted, "made");
+    const ClusterMembers members(scene.clusters);
+    const int count = scene.clusters.clusterCount;
+    int c = 0;
+    while (members.Size(c) < 4) ++c;
+    const std::vector<int> all(members.begin(c), members.end(c));
+    const std::vector<int> first(all.begin(), all.begin() + 2), second(all.begin() + 2, all.end());
+    Clustering split = scene.clusters;
+    for (int i : second) split.label[i] = count;
+    split.clusterCount = count + 1;
+    ExpectSameSurfels(maker.Update(base, members, split, {c, count}, {first, second}).fitted,
+                      whole.Make(split).fitted, "updated");
+}
+
 // Make's report between generation and fit can stop the fit (a cancel): the set's fitted
 // surfels are then the unfitted ones; a report that goes on changes nothing.
 TEST(SurfelRecipe, MakeSkipsTheFitWhenTheReportSaysStop)

@@ -124,6 +124,25 @@ inline void RestrictToCone(const PointArray &points, const PointArray &normals,
     }
 }
 
+/// Keeps the first `slots` slots of every point (the nearest kept by the cone, then the nearest
+/// rejected), in a buffer of that stride: for stages that read no further, at a fraction of the
+/// memory. The graph can no longer be restricted to another cone.
+inline void KeepFirstSlots(NeighborGraph &g, int slots)
+{
+    if (slots >= g.stride) return;
+    const int n = g.Size();
+    FlatVector<int> kept(size_t(n) * size_t(slots));
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+        std::copy(g.begin(i), g.begin(i) + slots, kept.data() + size_t(i) * slots);
+        g.found[i] = std::uint8_t(std::min<int>(g.found[i], slots));
+        g.count[i] = std::uint8_t(std::min<int>(g.count[i], slots));
+    }
+    g.adjacency.swap(kept);
+    g.stride = slots;
+    g.chord = -2; // no chord's partition: RestrictToCone would need the slots cut off
+}
+
 /// Builds N(p) for unit normals `normals` at `points` (same size, finite).
 /// Postcondition: graph.Size() == points.size(); every kept neighbour j != i is among
 /// the k nearest of i and satisfies the cone test. Runs in parallel with OpenMP; the

@@ -389,9 +389,11 @@ private:
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
 ///      graph (the maker's too); clusters compact with clusterCount >= 1.
 /// \post clusters.clusterCount unchanged; maxAfter <= maxBefore; deterministic: the result does
-///       not depend on the thread count.
+///       not depend on the thread count. Unless nothing was tried, `graph` keeps only its first
+///       kOffsetNeighbors slots per point (KeepFirstSlots: what the maker's fits read; at 20 M
+///       points its other slots would be 32 B a point at the exchanges' memory peak).
 inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, const PointArray &normals,
-                                                  const NeighborGraph &graph, double weightWidth, double diagonal,
+                                                  NeighborGraph &graph, double weightWidth, double diagonal,
                                                   const MaxErrorExchangeParams &param, Clustering &clusters,
                                                   const SurfelMaker &maker,
                                                   std::vector<Surfel> &surfels,
@@ -411,6 +413,21 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     };
     BlendedDistances distances(points, normals, diagonal);
     if (!goOn()) return result; // cancelled: the caller discards the run
+    // The clusters of a kept exchange are not merged again (that would undo it); neither, among
+    // the merges tried with one split, are the clusters of a merge that failed (twirl at 5 %: the
+    // next cheapest pairs merged the same neighbourhood back, and Delta*max stopped at 0.077
+    // instead of 0.054). The pairs between the other clusters keep their links and costs, so
+    // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
+    // Listed first: that reads every neighbour slot, the surfels and their fit only the first
+    // kOffsetNeighbors, so the graph is cut to those before the exchange's own buffers exist.
+    CheapestFirst pairs;
+    {
+        const std::unique_ptr<MergeBasis> basis =
+            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double) { return goOn(); });
+        if (basis && goOn()) pairs = CheapestFirst(LinkedPairs(basis->model, basis->adjacent));
+    }
+    if (result.cancelled) return result;
+    KeepFirstSlots(graph, kOffsetNeighbors);
     SurfelMaker::Set current = maker.Make(clusters, goOn); // unfitted if cancelled before the fit
     if (result.cancelled || !goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);
@@ -421,18 +438,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // (a trial's surface holds the surfels near the points it projects) differ in the last bits.
     const double rounding = 1e-9 * diagonal;
     const double invH2 = 1.0 / (weightWidth * weightWidth);
-    // The clusters of a kept exchange are not merged again (that would undo it); neither, among
-    // the merges tried with one split, are the clusters of a merge that failed (twirl at 5 %: the
-    // next cheapest pairs merged the same neighbourhood back, and Delta*max stopped at 0.077
-    // instead of 0.054). The pairs between the other clusters keep their links and costs, so
-    // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
     std::vector<char> settled(count, 0);
-    CheapestFirst pairs;
-    if (distances.Max() > 0) {
-        const std::unique_ptr<MergeBasis> basis =
-            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double) { return goOn(); });
-        if (basis && goOn()) pairs = CheapestFirst(LinkedPairs(basis->model, basis->adjacent));
-    }
     // One surfel set for every trial: its buffers (two surfels per cluster) are filled anew, not
     // allocated anew (fresh pages cost more than the copy on a virtual machine).
     SurfelMaker::Set trial;

@@ -69,7 +69,9 @@ public:
         std::vector<Surfel> unfitted, fitted;
     };
 
-    /// \pre points, unit normals and `graph` as clustered; they outlive the maker.
+    /// \pre points, unit normals and `graph` as clustered; they outlive the maker. Later, the
+    ///      graph may keep only its first kOffsetNeighbors slots (KeepFirstSlots): Make and
+    ///      Update read no further (MakeFitted reads all).
     SurfelMaker(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                 const SurfelRecipe &recipe)
         : points_(points), normals_(normals), graph_(graph), recipe_(recipe)
@@ -98,7 +100,13 @@ public:
     {
         Set s;
         const ClusterMembers members(clusters);
-        s.unfitted = UnfittedSurfels(points_, normals_, graph_, clusters, members, recipe_);
+        // UnfittedSurfels, the blends narrowed from the flags: the graph's rows beyond the fit's
+        // slots may be gone (ExchangeForMaxError keeps only those).
+        s.unfitted = GenerateSurfels(points_, normals_, graph_.spacing, clusters, members, recipe_.generation);
+        for (size_t i = 0; i < narrowing_.size(); ++i) {
+            const int c = narrowing_[i] ? clusters.label[i] : -1;
+            if (c >= 0 && s.unfitted[size_t(c)].memberCount >= 2) s.unfitted[size_t(c)].blendScale = recipe_.creaseBlendScale;
+        }
         const bool fit = !beforeFit || beforeFit();
         s.fitted = s.unfitted;
         if (fit && recipe_.fitOffsets)
