@@ -192,14 +192,18 @@ int RunOnce(const Options &o)
     std::string longestStage;
     Clock::time_point previous = callStart;
     std::string stage = "before first callback";
+    // A stage spans every interval its callbacks open (the exchanges report once per trial):
+    // its peak is their largest, its time their sum.
+    std::map<std::string, std::size_t> stagePeak;
+    std::map<std::string, double> stageSeconds;
     auto closeInterval = [&](Clock::time_point end, std::size_t intervalPeak) {
         const double gap = std::chrono::duration<double>(end - previous).count();
         if (gap > longestGap) { longestGap = gap; longestStage = stage; }
         peak = std::max(peak, intervalPeak);
         std::string key = stage;
         std::replace(key.begin(), key.end(), ' ', '_');
-        if (recorder.peakResettable) out("stage_peak_beyond_bytes." + key, double(intervalPeak) - double(rssInput));
-        out("stage_s." + key, gap);
+        stagePeak[key] = std::max(stagePeak[key], intervalPeak);
+        stageSeconds[key] += gap;
     };
     for (const CallbackEvent &e : recorder.events) {
         closeInterval(e.time, e.peakBefore);
@@ -207,6 +211,10 @@ int RunOnce(const Options &o)
         stage = ShortStage(e.label);
     }
     closeInterval(callEnd, peakAfterLast);
+    for (const auto &s : stagePeak) {
+        if (recorder.peakResettable) out("stage_peak_beyond_bytes." + s.first, double(s.second) - double(rssInput));
+        out("stage_s." + s.first, stageSeconds[s.first]);
+    }
     if (!recorder.peakResettable) peak = std::max(peak, peakBeforeCall); // includes generation: an upper bound
     out("callbacks", recorder.events.size());
     out("longest_callback_gap_s", longestGap);
@@ -446,13 +454,17 @@ void WriteMarkdown(const std::vector<Measurement> &runs, const Options &o, const
 
     if (Get(o, "target-percent", "0") != "0") {
         md << "\n## Target size: the stages beyond the level path\n\n"
-           << "| points | threads | output | merges or splits s | exchanges s | total s | B/pt beyond input |\n"
-              "|---:|---:|---:|---:|---:|---:|---:|\n";
+           << "Peaks: the largest over the intervals between callbacks that the stage's reports open (bytes per "
+              "input point beyond the input).\n\n"
+           << "| points | threads | output | merges or splits s | exchanges s | total s | B/pt beyond input | "
+              "peak merging | peak exchanges |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const Measurement &m : runs)
             md << "| " << Format("%.0f", m.Num("points")) << " | " << m.Text("threads") << " | "
                << Format("%.0f", m.Num("output")) << " | " << Format("%.2f", m.Num("refinement_s")) << " | "
                << Format("%.2f", m.Num("exchanges_s")) << " | " << Format("%.2f", m.Num("total_s")) << " | "
-               << Format("%.1f", m.PerPoint("beyond_input_bytes")) << " |\n";
+               << Format("%.1f", m.PerPoint("beyond_input_bytes")) << " | "
+               << Format("%.1f", m.PerPoint("stage_peak_beyond_bytes.merging_clusters")) << " | "
+               << Format("%.1f", m.PerPoint("stage_peak_beyond_bytes.exchanges_for_the_largest_error")) << " |\n";
     }
 
     md << "\n## Responsiveness: longest interval between progress callbacks\n\n"
