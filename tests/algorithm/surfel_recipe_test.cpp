@@ -52,6 +52,25 @@ void ExpectSameSurfels(const std::vector<Surfel> &a, const std::vector<Surfel> &
     }
 }
 
+/// The first cluster of 4 or more members split: its first two members stay, the others form a
+/// new cluster numbered after the last.
+struct FirstSplit
+{
+    int cluster = 0;
+    std::vector<int> first, second;
+    Clustering clusters;
+
+    FirstSplit(const Clustering &before, const ClusterMembers &members)
+    {
+        while (members.Size(cluster) < 4) ++cluster;
+        first.assign(members.begin(cluster), members.begin(cluster) + 2);
+        second.assign(members.begin(cluster) + 2, members.end(cluster));
+        clusters = before;
+        for (int i : second) clusters.label[i] = before.clusterCount;
+        clusters.clusterCount = before.clusterCount + 1;
+    }
+};
+
 std::vector<int> Sorted(std::vector<int> v)
 {
     std::sort(v.begin(), v.end());
@@ -128,16 +147,11 @@ TEST(SurfelRecipe, MakeAndUpdateNeedOnlyTheFitsSlots)
     const SurfelMaker::Set base = maker.Make(scene.clusters);
     ExpectSameSurfels(base.fitted, whole.Make(scene.clusters).fitted, "made");
     const ClusterMembers members(scene.clusters);
-    const int count = scene.clusters.clusterCount;
-    int c = 0;
-    while (members.Size(c) < 4) ++c;
-    const std::vector<int> all(members.begin(c), members.end(c));
-    const std::vector<int> first(all.begin(), all.begin() + 2), second(all.begin() + 2, all.end());
-    Clustering split = scene.clusters;
-    for (int i : second) split.label[i] = count;
-    split.clusterCount = count + 1;
-    ExpectSameSurfels(maker.Update(base, members, split, {c, count}, {first, second}).fitted,
-                      whole.Make(split).fitted, "updated");
+    const FirstSplit split(scene.clusters, members);
+    ExpectSameSurfels(maker.Update(base, members, split.clusters, {split.cluster, scene.clusters.clusterCount},
+                                   {split.first, split.second})
+                          .fitted,
+                      whole.Make(split.clusters).fitted, "updated");
 }
 
 // Make's report between generation and fit can stop the fit (a cancel): the set's fitted
@@ -168,16 +182,10 @@ TEST(SurfelRecipe, UpdateWithoutAdjustments)
     const SurfelMaker maker(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
     const SurfelMaker::Set base = maker.Make(scene.clusters);
     const ClusterMembers members(scene.clusters);
-    const int count = scene.clusters.clusterCount;
-    int c = 0;
-    while (members.Size(c) < 4) ++c;
-    const std::vector<int> all(members.begin(c), members.end(c));
-    const std::vector<int> first(all.begin(), all.begin() + 2), second(all.begin() + 2, all.end());
-    Clustering split = scene.clusters;
-    for (int i : second) split.label[i] = count;
-    split.clusterCount = count + 1;
-    const SurfelMaker::Set update = maker.Update(base, members, split, {c, count}, {first, second});
-    ExpectSameSurfels(update.fitted, maker.Make(split).fitted, "split");
+    const FirstSplit split(scene.clusters, members);
+    const SurfelMaker::Set update = maker.Update(base, members, split.clusters,
+                                                 {split.cluster, scene.clusters.clusterCount}, {split.first, split.second});
+    ExpectSameSurfels(update.fitted, maker.Make(split.clusters).fitted, "split");
     for (const Surfel &f : update.fitted) {
         EXPECT_EQ(f.blendScale, 1.f);
         EXPECT_EQ(f.fitOffset, 0.f);
