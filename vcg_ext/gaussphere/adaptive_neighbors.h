@@ -124,22 +124,23 @@ inline void RestrictToCone(const PointArray &points, const PointArray &normals,
     }
 }
 
-/// Keeps the first `slots` slots of every point (the nearest kept by the cone, then the nearest
+/// Keeps the first `slotCount` slots of every point (the nearest kept by the cone, then the nearest
 /// rejected), in a buffer of that stride: for stages that read no further, at a fraction of the
 /// memory. The graph can no longer be restricted to another cone.
-inline void KeepFirstSlots(NeighborGraph &g, int slots)
+// (Not "slots": Qt defines it as a macro, and MeshLab plugins include these headers.)
+inline void KeepFirstSlots(NeighborGraph &g, int slotCount)
 {
-    if (slots >= g.stride) return;
+    if (slotCount >= g.stride) return;
     const int n = g.Size();
-    FlatVector<int> kept(size_t(n) * size_t(slots));
+    FlatVector<int> kept(size_t(n) * size_t(slotCount));
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
-        std::copy(g.begin(i), g.begin(i) + slots, kept.data() + size_t(i) * slots);
-        g.found[i] = std::uint8_t(std::min<int>(g.found[i], slots));
-        g.count[i] = std::uint8_t(std::min<int>(g.count[i], slots));
+        std::copy(g.begin(i), g.begin(i) + slotCount, kept.data() + size_t(i) * slotCount);
+        g.found[i] = std::uint8_t(std::min<int>(g.found[i], slotCount));
+        g.count[i] = std::uint8_t(std::min<int>(g.count[i], slotCount));
     }
     g.adjacency.swap(kept);
-    g.stride = slots;
+    g.stride = slotCount;
     g.chord = -2; // no chord's partition: RestrictToCone would need the slots cut off
 }
 

@@ -430,9 +430,9 @@ private:
             // Each side within the cap before the product (no overflow), and at most 64 cells per
             // occupied one (a surface gives ~20: a scattered input keeps the hash table).
             const std::int64_t side[3] = {high.x - low.x + 1, high.y - low.y + 1, high.z - low.z + 1};
-            const bool small = side[0] <= kMaxDenseCells && side[1] <= kMaxDenseCells && side[2] <= kMaxDenseCells &&
-                               side[0] * side[1] <= kMaxDenseCells;
-            const std::int64_t volume = small ? side[0] * side[1] * side[2] : kMaxDenseCells + 1;
+            const bool sidesFit = side[0] <= kMaxDenseCells && side[1] <= kMaxDenseCells && side[2] <= kMaxDenseCells &&
+                                  side[0] * side[1] <= kMaxDenseCells;
+            const std::int64_t volume = sidesFit ? side[0] * side[1] * side[2] : kMaxDenseCells + 1;
             if (DenseCellTables() && volume <= kMaxDenseCells && volume <= 64 * std::int64_t(CellCount())) {
                 denseLow_ = low;
                 denseSize_ = {high.x - low.x + 1, high.y - low.y + 1, high.z - low.z + 1};
