@@ -435,10 +435,10 @@ private:
             const std::int64_t volume = sidesFit ? side[0] * side[1] * side[2] : kMaxDenseCells + 1;
             if (DenseCellTables() && volume <= kMaxDenseCells && volume <= 64 * std::int64_t(CellCount())) {
                 denseLow_ = low;
-                denseSize_ = {high.x - low.x + 1, high.y - low.y + 1, high.z - low.z + 1};
+                denseSize_ = {side[0], side[1], side[2]};
                 dense_.resize(size_t(volume));
                 std::fill(dense_.begin(), dense_.end(), -1);
-                for (int c = 0; c < CellCount(); ++c) dense_[size_t(DenseIndex(DecodeCell(cellKey_[c])))] = c;
+                for (int c = 0; c < CellCount(); ++c) dense_[size_t(DenseIndex(Offset(DecodeCell(cellKey_[c]))))] = c;
                 return;
             }
         }
@@ -452,16 +452,15 @@ private:
         }
     }
     static size_t Hash(std::uint64_t key) { return size_t((key * 0x9E3779B97F4A7C15ull) >> 17); }
-    std::int64_t DenseIndex(const Cell &c) const
-    {
-        return ((c.x - denseLow_.x) * denseSize_.y + (c.y - denseLow_.y)) * denseSize_.z + (c.z - denseLow_.z);
-    }
+    /// A cell relative to the dense array's lowest corner, and its entry there.
+    Cell Offset(const Cell &c) const { return Cell{c.x - denseLow_.x, c.y - denseLow_.y, c.z - denseLow_.z}; }
+    std::int64_t DenseIndex(const Cell &offset) const { return (offset.x * denseSize_.y + offset.y) * denseSize_.z + offset.z; }
     int FindCell(const Cell &c) const
     {
         if (!dense_.empty()) {
-            const Cell d{c.x - denseLow_.x, c.y - denseLow_.y, c.z - denseLow_.z};
+            const Cell d = Offset(c);
             if (d.x < 0 || d.y < 0 || d.z < 0 || d.x >= denseSize_.x || d.y >= denseSize_.y || d.z >= denseSize_.z) return -1;
-            return dense_[size_t(DenseIndex(c))];
+            return dense_[size_t(DenseIndex(d))];
         }
         const std::int64_t limit = std::int64_t(1) << 21;
         if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= limit || c.y >= limit || c.z >= limit) return -1;

@@ -74,18 +74,9 @@ public:
     ///      Update read no further (MakeFitted reads all).
     SurfelMaker(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                 const SurfelRecipe &recipe)
-        : points_(points), normals_(normals), graph_(graph), recipe_(recipe)
-    {
-        // The points whose cluster NarrowBlendsAroundCreases narrows: crease points and their neighbours.
-        if (recipe.creaseBlendScale < 1 && !graph.crease.empty()) {
-            narrowing_.assign(size_t(graph.Size()), 0);
-            for (int i = 0; i < graph.Size(); ++i) {
-                if (!graph.crease[i]) continue;
-                narrowing_[size_t(i)] = 1;
-                for (const int *q = graph.begin(i), *end = q + graph.found[i]; q != end; ++q) narrowing_[size_t(*q)] = 1;
-            }
-        }
-    }
+        : points_(points), normals_(normals), graph_(graph), recipe_(recipe),
+          narrowing_(NarrowingFlags(graph, recipe.creaseBlendScale))
+    {}
 
     /// MakeSurfels(clusters): the fitted surfels alone.
     std::vector<Surfel> MakeFitted(const Clustering &clusters) const
@@ -103,10 +94,7 @@ public:
         // UnfittedSurfels, the blends narrowed from the flags: the graph's rows beyond the fit's
         // slots may be gone (ExchangeForMaxError keeps only those).
         s.unfitted = GenerateSurfels(points_, normals_, graph_.spacing, clusters, members, recipe_.generation);
-        for (size_t i = 0; i < narrowing_.size(); ++i) {
-            const int c = narrowing_[i] ? clusters.label[i] : -1;
-            if (c >= 0 && s.unfitted[size_t(c)].memberCount >= 2) s.unfitted[size_t(c)].blendScale = recipe_.creaseBlendScale;
-        }
+        NarrowFlaggedBlends(narrowing_, clusters, recipe_.creaseBlendScale, s.unfitted);
         const bool fit = !beforeFit || beforeFit();
         s.fitted = s.unfitted;
         if (fit && recipe_.fitOffsets)
