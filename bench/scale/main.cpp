@@ -2,7 +2,7 @@
 //
 //   gsscale generate --points N [--shape S] [--seed S] [--noise X] --out FILE.ply
 //       writes a generated point set (binary PLY, float x y z nx ny nz)
-//   gsscale run --points N [--shape S] [--seed S] [--noise X] [--level L] [--target-percent P]
+//   gsscale run --points N [--shape S] [--seed S] [--noise X] [--level L] [--target-percent P] [--trace 1]
 //       generates in memory, resamples once, prints key=value lines (one measurement)
 //   gsscale bench [--sizes 1000000,5000000,20000000] [--threads 2,1] [--shape S] ...
 //                 --csv FILE --md FILE [--commit TEXT]
@@ -101,6 +101,7 @@ struct CallbackEvent
     int percent;
     std::string label;
     std::size_t peakBefore; ///< peak RSS of the interval that this call closes
+    std::size_t resident, heapInUse; ///< RSS and live heap blocks at the call
 };
 
 struct CallbackRecorder
@@ -111,7 +112,7 @@ struct CallbackRecorder
     void Record(int percent, const char *label)
     {
         const Clock::time_point now = Clock::now(); // before the probes: they are not the resampler's time
-        events.push_back({now, percent, label ? label : "", PeakResidentBytes()});
+        events.push_back({now, percent, label ? label : "", PeakResidentBytes(), ResidentBytes(), HeapInUseBytes()});
         ResetPeakResident();
     }
 };
@@ -148,6 +149,7 @@ int RunOnce(const Options &o)
     const double generateSeconds = std::chrono::duration<double>(Clock::now() - genStart).count();
     TrimHeap(); // the source mesh is gone; give its pages back so the baseline is the points alone
     const std::size_t rssInput = ResidentBytes();
+    const std::size_t heapInput = HeapInUseBytes();
 
     CallbackRecorder recorder;
     gRecorder = &recorder;
@@ -205,7 +207,15 @@ int RunOnce(const Options &o)
         stagePeak[key] = std::max(stagePeak[key], intervalPeak);
         stageSeconds[key] += gap;
     };
+    const bool trace = Get(o, "trace", "0") == "1";
     for (const CallbackEvent &e : recorder.events) {
+        // --trace 1: each interval's length and peak, then the RSS and live heap blocks at its end
+        // (B/point beyond the input), with its stage.
+        if (trace)
+            std::fprintf(stderr, "trace %7.3f s peak %6.1f rss %6.1f heap %6.1f B/pt  %s\n",
+                         std::chrono::duration<double>(e.time - previous).count(),
+                         (double(e.peakBefore) - double(rssInput)) / n, (double(e.resident) - double(rssInput)) / n,
+                         (double(e.heapInUse) - double(heapInput)) / n, stage.c_str());
         closeInterval(e.time, e.peakBefore);
         previous = e.time;
         stage = ShortStage(e.label);

@@ -49,6 +49,12 @@ double CpuSeconds()
 
 void TrimHeap() { malloc_trim(0); }
 
+std::size_t HeapInUseBytes()
+{
+    const struct mallinfo2 info = mallinfo2();
+    return info.uordblks + info.hblkhd;
+}
+
 void UseMmapForLargeBlocks()
 {
     mallopt(M_MMAP_THRESHOLD, 256 * 1024); // setting it also stops the dynamic adjustment

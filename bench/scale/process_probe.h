@@ -27,6 +27,10 @@ bool ResetPeakResident();
 /// User + system CPU time of the process (all threads), seconds.
 double CpuSeconds();
 
+/// Bytes the allocator holds for live blocks (malloc's arenas and its own mmaps): what RSS would
+/// be without fragmentation and cached free memory.
+std::size_t HeapInUseBytes();
+
 /// Returns freed heap memory to the kernel so that RSS reflects live data only.
 void TrimHeap();
 

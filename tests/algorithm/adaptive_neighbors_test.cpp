@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/point_kdtree.h>
@@ -185,6 +188,33 @@ TEST(AdaptiveNeighbors, IndependentOfThreadCount)
     EXPECT_EQ(one.count, two.count);
     EXPECT_EQ(one.adjacency, two.adjacency);
     EXPECT_EQ(one.spacing, two.spacing);
+}
+
+// KeepFirstSlots moves the rows within the buffer in batches; the result is the first slots of
+// every row, as a plain copy gives them, for strides cut by a factor 16, 2 and 9/8 (many small
+// batches), on 1 and 3 threads.
+TEST(AdaptiveNeighbors, KeepFirstSlotsKeepsEachRowsFirstSlots)
+{
+    const gstest::PointSet s = RandomOrientedPoints(70000, 5); // adjacency 4.5 MB: a mapped buffer
+    for (int threads : {1, 3})
+        for (const auto &cut : {std::make_pair(16, 1), std::make_pair(16, 8), std::make_pair(9, 8), std::make_pair(3, 2)}) {
+            gstest::ThreadCount t(threads);
+            NeighborGraph g = Build(s, cut.first, 0.42);
+            ASSERT_EQ(g.stride, cut.first);
+            std::vector<int> expected;
+            std::vector<std::uint8_t> found, count;
+            for (int i = 0; i < g.Size(); ++i) {
+                expected.insert(expected.end(), g.begin(i), g.begin(i) + cut.second);
+                found.push_back(std::uint8_t(std::min<int>(g.found[i], cut.second)));
+                count.push_back(std::uint8_t(std::min<int>(g.count[i], cut.second)));
+            }
+            KeepFirstSlots(g, cut.second);
+            EXPECT_EQ(g.stride, cut.second);
+            EXPECT_TRUE(std::equal(expected.begin(), expected.end(), g.adjacency.begin(), g.adjacency.end()))
+                << cut.first << " -> " << cut.second << " slots, " << threads << " threads";
+            EXPECT_TRUE(std::equal(found.begin(), found.end(), g.found.begin(), g.found.end()));
+            EXPECT_TRUE(std::equal(count.begin(), count.end(), g.count.begin(), g.count.end()));
+        }
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <set>
 
 #include <vcg_ext/gaussphere/cluster_refinement.h>
@@ -159,6 +160,29 @@ TEST(SplitToCount, ReportsProgressAndCancels)
 
 // The pairs of linked clusters: every linked pair once (a < b), with MergeCostModel's cost, in
 // order of a then b, as a serial listing gives them.
+// Merging leaves in its basis the merged clusters' links, as ClusterAdjacency reads them from
+// the graph (k-nearest: not symmetric), and needs no graph for it: the graph is cut first.
+TEST(MergeToCount, LeavesTheMergedClustersLinks)
+{
+    const PointSet cube = CubeSurface(12, true);
+    const PointGrid grid(cube.points);
+    AdaptiveNeighborParams neighbours;
+    neighbours.k = 16;
+    NeighborGraph graph = BuildAdaptiveNeighbors(cube.points, cube.normals, neighbours, grid);
+    const NeighborGraph whole = graph;
+    Clustering c;
+    c.label.resize(cube.points.size());
+    for (int i = 0; i < int(c.label.size()); ++i) c.label[i] = i / 3; // clusters of 3 along the input order
+    c.clusterCount = int(c.label.size() + 2) / 3;
+    const std::unique_ptr<MergeBasis> basis = BuildMergeBasis(cube.points, cube.normals, graph, c, 0.1, nullptr);
+    ASSERT_TRUE(basis);
+    KeepFirstSlots(graph, 4);
+    const int before = c.clusterCount, target = before / 5;
+    EXPECT_EQ(MergeToCount(*basis, target, c), before - target);
+    ASSERT_EQ(c.clusterCount, target);
+    EXPECT_EQ(basis->adjacent, ClusterAdjacency(whole, c, ClusterMembers(c)));
+}
+
 TEST(LinkedPairs, ListsEveryLinkedPairOnceWithItsCost)
 {
     const Terraces t = MakeTerraces(0.5f);

@@ -82,4 +82,40 @@ TEST(FlatVector, FreedLargeBuffersAreReusedOnlyInsideAReuseScope)
     }
     EXPECT_EQ(Cache::Instance().Take(size_t(2) << 20), nullptr);
 }
+/// Whether the page holding p is in memory.
+bool Resident(const void *p)
+{
+    unsigned char resident = 0;
+    void *page = reinterpret_cast<void *>(std::uintptr_t(p) / 4096 * 4096);
+    return mincore(page, 4096, &resident) == 0 && (resident & 1);
+}
+
+// Cut down in place, a large buffer keeps its address and its kept elements, and its pages past
+// them leave memory; a small one is shrunk to fit.
+TEST(FlatVector, ReleaseUnusedCapacityDropsThePagesPastTheEnd)
+{
+    const size_t count = 3 * (size_t(2) << 20) / sizeof(int); // 6 MB
+    FlatVector<int> large(count);
+    for (size_t i = 0; i < count; ++i) large[i] = int(i);
+    const int *before = large.data();
+    ASSERT_TRUE(Resident(large.data() + count - 1));
+    large.resize(count / 3);
+    vcg::gaussphere::ReleaseUnusedCapacity(large);
+    EXPECT_EQ(large.data(), before);
+    EXPECT_EQ(large.size(), count / 3);
+    bool same = true;
+    for (size_t i = 0; i < large.size(); ++i) same &= large[i] == int(i);
+    EXPECT_TRUE(same);
+    EXPECT_TRUE(Resident(large.data() + large.size() - 1));
+    EXPECT_FALSE(Resident(large.data() + count / 3 + 4096 / sizeof(int)));
+    EXPECT_FALSE(Resident(large.data() + count - 1));
+    large.resize(count); // grows again in place: the released pages come back zeroed
+    EXPECT_EQ(large.data(), before);
+    EXPECT_EQ(large[count - 1], 0);
+
+    FlatVector<int> small(1000);
+    small.resize(10);
+    vcg::gaussphere::ReleaseUnusedCapacity(small);
+    EXPECT_EQ(small.capacity(), 10u);
+}
 #endif

@@ -313,6 +313,31 @@ TEST(MaxErrorExchange, CheapestFirstReadsInSortedOrder)
     }
     EXPECT_EQ(lazy.At(sorted.size()), nullptr);
     EXPECT_TRUE(CheapestFirst().Empty());
+    // Keeping the 700 cheapest: the same first 700, then nothing.
+    CheapestFirst kept(pairs, 700);
+    for (size_t i = 0; i < 700; ++i) {
+        const MergePair *p = kept.At(i);
+        ASSERT_NE(p, nullptr);
+        ASSERT_TRUE(p->cost == sorted[i].cost && p->a == sorted[i].a && p->b == sorted[i].b) << i;
+    }
+    EXPECT_EQ(kept.At(700), nullptr);
+}
+
+// The exchanges' bound on the pairs read: mergeCandidates + the pairs of the
+// 3 maxRounds + 1 + 2 mergeCandidates clusters that have the most; all when that is every cluster.
+TEST(MaxErrorExchange, PairsReadAtMostCountsTheBusiestClusters)
+{
+    // A star: cluster 0 paired with 1..40, and a chain 41-42-...-100.
+    std::vector<MergePair> pairs;
+    for (int b = 1; b <= 40; ++b) pairs.push_back({1.0, 0, b});
+    for (int a = 41; a < 100; ++a) pairs.push_back({2.0, a, a + 1});
+    MaxErrorExchangeParams param;
+    param.maxRounds = 2;
+    param.mergeCandidates = 3;
+    // 13 excluded at most: the star's centre (40 pairs) and 12 clusters of 2 pairs.
+    EXPECT_EQ(PairsReadAtMost(pairs, 101, param), size_t(3 + 40 + 12 * 2));
+    param.maxRounds = 40; // 3 * 40 + 1 + 6 >= 101 clusters: every pair
+    EXPECT_EQ(PairsReadAtMost(pairs, 101, param), pairs.size());
 }
 
 // A trial's label change is undone exactly, cluster count included.

@@ -130,8 +130,8 @@ TEST(SurfelRecipe, UpdateEqualsMake)
     EXPECT_GT(exchangesChecked, 10);
 }
 
-// A maker whose graph was cut to the fit's slots (KeepFirstSlots, as the exchanges do) makes
-// and updates the same surfels as one on the whole graph: the narrowed blends come from flags
+// A maker whose graph was cut to the fit's slots (KeepFirstSlots, as merging and the exchanges
+// do) makes and updates the same surfels as one on the whole graph, and as MakeSurfels: the narrowed blends come from flags
 // taken at construction, the fit reads no further.
 TEST(SurfelRecipe, MakeAndUpdateNeedOnlyTheFitsSlots)
 {
@@ -146,6 +146,9 @@ TEST(SurfelRecipe, MakeAndUpdateNeedOnlyTheFitsSlots)
     ASSERT_LT(cut.adjacency.size(), scene.graph.adjacency.size());
     const SurfelMaker::Set base = maker.Make(scene.clusters);
     ExpectSameSurfels(base.fitted, whole.Make(scene.clusters).fitted, "made");
+    ExpectSameSurfels(maker.MakeFitted(scene.clusters),
+                      MakeSurfels(scene.s.points, scene.s.normals, scene.graph, scene.clusters, scene.recipe),
+                      "made fitted in place");
     const ClusterMembers members(scene.clusters);
     const FirstSplit split(scene.clusters, members);
     ExpectSameSurfels(maker.Update(base, members, split.clusters, {split.cluster, scene.clusters.clusterCount},

@@ -214,7 +214,7 @@ public:
                 s.size += 1;
                 s.normalSum += detail::ToEigen(normals[*i]);
                 s.positionSum += p;
-                s.moment += p * p.transpose();
+                for (int e = 0; e < 6; ++e) s.moment[e] += p[kRow[e]] * p[kColumn[e]];
             }
         }
     }
@@ -239,24 +239,29 @@ public:
     void Merge(int keep, int gone) { sums_[keep].Add(sums_[gone]); }
 
 private:
-    struct Sums
+    // The upper triangle of a symmetric 3x3 matrix, row by row: (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
+    static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kColumn[6] = {0, 1, 2, 1, 2, 2};
+
+    struct Sums // 104 bytes a cluster: at 20 million points merging holds millions of them
     {
         double size = 0;
         Eigen::Vector3d normalSum = Eigen::Vector3d::Zero(), positionSum = Eigen::Vector3d::Zero();
-        Eigen::Matrix3d moment = Eigen::Matrix3d::Zero(); // sum of p p^T
+        double moment[6] = {0, 0, 0, 0, 0, 0}; // sum of p p^T, upper triangle (kRow, kColumn)
 
         void Add(const Sums &o)
         {
             size += o.size;
             normalSum += o.normalSum;
             positionSum += o.positionSum;
-            moment += o.moment;
+            for (int e = 0; e < 6; ++e) moment[e] += o.moment[e];
         }
         /// Sum of the members' squared distances to the plane through the centroid along the
         /// mean normal; with normals that cancel out (no plane), the whole spread.
         double PlaneError() const
         {
-            const Eigen::Matrix3d scatter = moment - positionSum * positionSum.transpose() / size;
+            Eigen::Matrix3d full;
+            for (int e = 0; e < 6; ++e) full(kRow[e], kColumn[e]) = full(kColumn[e], kRow[e]) = moment[e];
+            const Eigen::Matrix3d scatter = full - positionSum * positionSum.transpose() / size;
             const double length = normalSum.norm();
             if (!(length > 1e-6 * size)) return std::max(0.0, scatter.trace());
             const Eigen::Vector3d n = normalSum / length;
@@ -323,8 +328,12 @@ struct MergePair
 
 /// The pairs (a, b), a < b, with b in adjacent[a] (ClusterAdjacency: a member of a has a neighbour
 /// in b; the k-nearest graph is not symmetric, and as before, a link seen only from b's members
-/// is not listed), with their costs by `model`, ordered by a, then b; computed in parallel.
-inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent)
+/// is not listed), as entries makeEntry(cost, a, b) with their costs by `model`, ordered by a,
+/// then b; computed in parallel. The buffer has room for `spare` times as many entries more
+/// (MergeToCount's queue grows in place).
+template <class Entry, class MakeEntry>
+std::vector<Entry> LinkedPairs(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent,
+                               MakeEntry makeEntry, double spare = 0)
 {
     const int count = int(adjacent.size());
     std::vector<size_t> start(size_t(count) + 1, 0); // first pair of each cluster a
@@ -332,15 +341,22 @@ inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std
         const std::vector<int> &list = adjacent[size_t(a)];
         start[size_t(a) + 1] = start[size_t(a)] + size_t(list.end() - std::upper_bound(list.begin(), list.end(), a));
     }
-    std::vector<MergePair> pairs(start.back());
+    std::vector<Entry> pairs;
+    pairs.reserve(start.back() + size_t(spare * double(start.back())));
+    pairs.resize(start.back());
 #pragma omp parallel for schedule(dynamic, 1024)
     for (int a = 0; a < count; ++a) {
         const std::vector<int> &list = adjacent[size_t(a)];
         size_t slot = start[size_t(a)];
         for (auto b = std::upper_bound(list.begin(), list.end(), a); b != list.end(); ++b)
-            pairs[slot++] = MergePair{model.Cost(a, *b), a, *b};
+            pairs[slot++] = makeEntry(model.Cost(a, *b), a, *b);
     }
     return pairs;
+}
+
+inline std::vector<MergePair> LinkedPairs(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent)
+{
+    return LinkedPairs<MergePair>(model, adjacent, [](double cost, int a, int b) { return MergePair{cost, a, b}; });
 }
 
 /// What MergeToCount and the exchanges merge by: each cluster's linked clusters and the cost model.
@@ -370,56 +386,71 @@ inline std::unique_ptr<MergeBasis> BuildMergeBasis(const PointArray &points, con
 }
 
 /// Merges neighbouring clusters, cheapest first (MergeCostModel), until `target` remain (or no
-/// two clusters are linked by `graph`, using every neighbour found, not only the cone).
-/// Returns the number of merges; clusters are compacted afterwards.
-/// `progress(fraction)`, if given, is called now and then from the calling thread (every few
-/// thousand merges: at 20 million points merging takes seconds); when it returns false merging
-/// stops and MergeToCount returns kRefinementCancelled, the clusters unchanged.
-inline int MergeToCount(const PointArray &points, const PointArray &normals,
-                        const NeighborGraph &graph, double weightWidth, int target, Clustering &clusters,
+/// two clusters are linked), from `basis` = BuildMergeBasis(clusters): the graph is not read
+/// again (the caller may cut it meanwhile). Returns the number of merges; clusters are compacted
+/// afterwards, and basis.adjacent then holds the merged clusters' links in their numbering
+/// (what ClusterAdjacency would give for them), basis.model is spent. `progress(fraction)`, if
+/// given, is called now and then from the calling thread (every few thousand merges: at 20
+/// million points merging takes seconds); when it returns false merging stops and MergeToCount
+/// returns kRefinementCancelled, the clusters unchanged.
+inline int MergeToCount(MergeBasis &basis, int target, Clustering &clusters,
                         const std::function<bool(double)> &progress = nullptr)
 {
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
     const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
-    const std::unique_ptr<MergeBasis> basis =
-        BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double done) { return goOn(0.2 * done); });
-    if (!basis || !goOn(0.2)) return kRefinementCancelled;
-    std::vector<std::vector<int>> &adjacent = basis->adjacent;
-    MergeCostModel &model = basis->model;
-    std::vector<int> version(count, 0);
+    std::vector<std::vector<int>> &adjacent = basis.adjacent;
+    MergeCostModel &model = basis.model;
     std::vector<int> parent(count);
     for (int k = 0; k < count; ++k) parent[k] = k;
     auto root = [&](int k) {
         while (parent[k] != k) k = parent[k] = parent[parent[k]];
         return k;
     };
-    struct Candidate { double cost; int a, b, versionA, versionB; bool operator<(const Candidate &o) const { return cost > o.cost || (cost == o.cost && (a > o.a || (a == o.a && b > o.b))); } };
-    std::priority_queue<Candidate> queue = [&]() { // made a heap in linear time
-        const std::vector<MergePair> pairs = LinkedPairs(model, adjacent);
-        std::vector<Candidate> initial(pairs.size());
-        for (size_t p = 0; p < pairs.size(); ++p) initial[p] = {pairs[p].cost, pairs[p].a, pairs[p].b, 0, 0};
-        return std::priority_queue<Candidate>(std::less<Candidate>(), std::move(initial));
-    }();
-    if (!goOn(0.3)) return kRefinementCancelled;
+    // A candidate is costed after `when` merges; it is stale once a side merged away or took
+    // another cluster in since (changed[side] > when): the merge that changed a side costed that
+    // side's pairs anew.
+    struct Candidate { double cost; int a, b, when; };
+    const auto later = [](const Candidate &x, const Candidate &y) {
+        return x.cost > y.cost || (x.cost == y.cost && (x.a > y.a || (x.a == y.a && x.b > y.b)));
+    };
+    std::vector<int> changed(count, 0);
+    const auto stale = [&](const Candidate &c) {
+        return root(c.a) != c.a || root(c.b) != c.b || changed[c.a] > c.when || changed[c.b] > c.when;
+    };
+    // The heap in one buffer, a quarter larger than the pairs: when full, stale entries are dropped
+    // (the order of the valid ones is a total order: the same merges) before it grows. A doubling
+    // vector held 3 times the pairs at the peak, 36 B a point at 20 million points.
+    std::vector<Candidate> heap = LinkedPairs<Candidate>(
+        model, adjacent, [](double cost, int a, int b) { return Candidate{cost, a, b, 0}; }, 0.25);
+    std::make_heap(heap.begin(), heap.end(), later);
+    const auto push = [&](const Candidate &c) {
+        if (heap.size() == heap.capacity() && !heap.empty()) {
+            heap.erase(std::remove_if(heap.begin(), heap.end(), stale), heap.end());
+            std::make_heap(heap.begin(), heap.end(), later);
+            if (heap.size() > heap.capacity() / 2) heap.reserve(heap.capacity() + heap.capacity() / 2);
+        }
+        heap.push_back(c);
+        std::push_heap(heap.begin(), heap.end(), later);
+    };
+    if (!goOn(0.1)) return kRefinementCancelled;
     const int needed = count - target;
     int remaining = count, merges = 0, nextReport = 0;
-    while (remaining > target && !queue.empty()) {
+    while (remaining > target && !heap.empty()) {
         if (merges >= nextReport) {
-            if (!goOn(0.3 + 0.7 * merges / needed)) return kRefinementCancelled;
+            if (!goOn(0.1 + 0.9 * merges / needed)) return kRefinementCancelled;
             nextReport = merges + 4096;
         }
-        const Candidate top = queue.top();
-        queue.pop();
-        if (root(top.a) != top.a || root(top.b) != top.b || version[top.a] != top.versionA ||
-            version[top.b] != top.versionB)
-            continue; // stale: one side merged since
+        std::pop_heap(heap.begin(), heap.end(), later);
+        const Candidate top = heap.back();
+        heap.pop_back();
+        if (stale(top)) continue;
         // Merge the smaller adjacency list into the larger one.
         int keep = top.a, gone = top.b;
         if (adjacent[keep].size() < adjacent[gone].size()) std::swap(keep, gone);
         parent[gone] = keep;
         model.Merge(keep, gone);
-        ++version[keep];
+        changed[keep] = merges + 1;
         std::vector<int> merged;
         for (int x : adjacent[keep]) merged.push_back(root(x));
         for (int x : adjacent[gone]) merged.push_back(root(x));
@@ -429,15 +460,44 @@ inline int MergeToCount(const PointArray &points, const PointArray &normals,
         std::vector<int>().swap(adjacent[gone]);
         for (int x : adjacent[keep]) {
             const int a = std::min(keep, x), b = std::max(keep, x);
-            queue.push({model.Cost(a, b), a, b, version[a], version[b]});
+            push({model.Cost(a, b), a, b, merges + 1});
         }
         --remaining;
         ++merges;
     }
     for (int &l : clusters.label)
         if (l >= 0) l = root(l);
-    clusters.Compact();
+    const IndexArray remap = clusters.Compact();
+    // A merged cluster's list holds the roots of its parts' links when it was last merged: their
+    // roots now, renumbered, are the links of its members.
+    std::vector<std::vector<int>> links(size_t(clusters.clusterCount));
+    for (int c = 0; c < count; ++c) {
+        if (remap[c] < 0) continue;
+        std::vector<int> &list = links[size_t(remap[c])];
+        for (int x : adjacent[size_t(c)]) {
+            const int linked = remap[root(x)];
+            if (linked >= 0 && linked != remap[c]) list.push_back(linked);
+        }
+        SortUnique(list);
+        list.shrink_to_fit();
+        std::vector<int>().swap(adjacent[size_t(c)]);
+    }
+    adjacent.swap(links);
     return merges;
+}
+
+/// MergeToCount, its basis built from `graph` (every neighbour found, not only the cone): the
+/// basis takes the first fifth of the progress.
+inline int MergeToCount(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
+                        double weightWidth, int target, Clustering &clusters,
+                        const std::function<bool(double)> &progress = nullptr)
+{
+    if (target >= clusters.clusterCount) return 0;
+    const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
+    const std::unique_ptr<MergeBasis> basis =
+        BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double done) { return goOn(0.2 * done); });
+    if (!basis || !goOn(0.2)) return kRefinementCancelled;
+    return MergeToCount(*basis, target, clusters, [&goOn](double done) { return goOn(0.2 + 0.8 * done); });
 }
 
 } // namespace gaussphere

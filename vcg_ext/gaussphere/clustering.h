@@ -24,8 +24,9 @@ struct Clustering
     IndexArray label;        ///< per point: cluster index in [0, clusterCount) or -1
     int clusterCount = 0;
 
-    /// Renumbers clusters 0..count-1 in order of first appearance, dropping empty ones.
-    void Compact()
+    /// Renumbers clusters 0..count-1 in order of first appearance, dropping empty ones. Returns
+    /// each old cluster's new index (-1: empty).
+    IndexArray Compact()
     {
         IndexArray remap(clusterCount, -1);
         int next = 0;
@@ -35,6 +36,7 @@ struct Clustering
             l = remap[l];
         }
         clusterCount = next;
+        return remap;
     }
 };
 

@@ -62,24 +62,24 @@ inline int NarrowBlendsAroundCreases(const NeighborGraph &graph, const Clusterin
 }
 
 /// The points whose clusters NarrowBlendsAroundCreases narrows: crease points and their (up to k)
-/// neighbours, one flag per point; empty when it narrows nothing (scale >= 1, no crease marks).
+/// neighbours, one bit per point; empty when it narrows nothing (scale >= 1, no crease marks).
 /// Taken while the graph has all its slots, for NarrowFlaggedBlends later.
-inline std::vector<char> NarrowingFlags(const NeighborGraph &graph, float scale)
+inline std::vector<bool> NarrowingFlags(const NeighborGraph &graph, float scale)
 {
-    std::vector<char> flags;
+    std::vector<bool> flags;
     if (scale >= 1 || graph.crease.empty()) return flags;
-    flags.assign(size_t(graph.Size()), 0);
+    flags.assign(size_t(graph.Size()), false);
     for (int i = 0; i < graph.Size(); ++i) {
         if (!graph.crease[i]) continue;
-        flags[size_t(i)] = 1;
-        for (const int *q = graph.begin(i), *end = q + graph.found[i]; q != end; ++q) flags[size_t(*q)] = 1;
+        flags[size_t(i)] = true;
+        for (const int *q = graph.begin(i), *end = q + graph.found[i]; q != end; ++q) flags[size_t(*q)] = true;
     }
     return flags;
 }
 
 /// NarrowBlendsAroundCreases from `flags` = NarrowingFlags(graph, scale): the same surfels
 /// narrowed, without reading the graph's rows again.
-inline void NarrowFlaggedBlends(const std::vector<char> &flags, const Clustering &clusters, float scale,
+inline void NarrowFlaggedBlends(const std::vector<bool> &flags, const Clustering &clusters, float scale,
                                 std::vector<Surfel> &surfels)
 {
     for (size_t i = 0; i < flags.size(); ++i) {

@@ -28,6 +28,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace vcg {
@@ -184,6 +185,28 @@ bool operator!=(const DefaultInitAllocator<T> &, const DefaultInitAllocator<U> &
 
 template <class T>
 using FlatVector = std::vector<T, DefaultInitAllocator<T>>;
+
+/// Returns the memory past v.size() to the system, keeping v's buffer where it is: a buffer cut
+/// down in place (resize) stops holding pages it no longer uses without a second buffer to copy
+/// into, which would raise the peak it is cut to lower. A large buffer keeps its capacity (its
+/// mapping), the pages past the last element dropped (they read as zeros if it grows again); a
+/// small one, on the heap, is shrunk to fit.
+template <class T>
+void ReleaseUnusedCapacity(FlatVector<T> &v)
+{
+    const std::size_t bytes = v.capacity() * sizeof(T);
+    if (bytes < detail::kHugePageMinBytes) {
+        v.shrink_to_fit();
+        return;
+    }
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(v.data());
+    const std::uintptr_t used = (start + v.size() * sizeof(T) + page - 1) / page * page;
+    const std::uintptr_t end = start + detail::MappedBytes(bytes);
+    if (end > used) madvise(reinterpret_cast<void *>(used), end - used, MADV_DONTNEED);
+#endif
+}
 
 /// Positions or normals of a point set, as the algorithms take them.
 using PointArray = FlatVector<vcg::Point3f>;

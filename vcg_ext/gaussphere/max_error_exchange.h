@@ -320,13 +320,20 @@ private:
 
 /// Merge pairs cheapest first, sorted as they are read: the exchange reads a few hundred of them,
 /// cluster adjacency gives millions at 20 million points (seconds of sorting, without a report).
+/// Only the `keep` cheapest are kept (16 B a pair; an exchange's bound: PairsReadAtMost).
 class CheapestFirst
 {
 public:
     CheapestFirst() = default;
-    explicit CheapestFirst(std::vector<MergePair> pairs) : pairs_(std::move(pairs)) {}
+    explicit CheapestFirst(std::vector<MergePair> pairs, size_t keep = size_t(-1)) : pairs_(std::move(pairs))
+    {
+        if (keep >= pairs_.size()) return;
+        std::nth_element(pairs_.begin(), pairs_.begin() + keep, pairs_.end()); // (cost, a, b): a total order
+        pairs_.resize(keep);
+        pairs_.shrink_to_fit();
+    }
     bool Empty() const { return pairs_.empty(); }
-    /// The i-th cheapest pair, or null past the last.
+    /// The i-th cheapest pair, or null past the last kept.
     const MergePair *At(size_t i)
     {
         if (i >= pairs_.size()) return nullptr;
@@ -343,6 +350,27 @@ private:
     std::vector<MergePair> pairs_;
     size_t sorted_ = 0;
 };
+
+/// How many of the cheapest `pairs` (between `clusterCount` clusters) ExchangeForMaxError can
+/// read: a split tried with merges reads them in order until mergeCandidates are tried, skipping
+/// the pairs that touch an excluded cluster (the settled ones, 3 per kept exchange; the split
+/// one; the 2 of each merge tried), so no further than mergeCandidates + the pairs of the
+/// 3 maxRounds + 1 + 2 mergeCandidates clusters that have the most. A few thousand of the
+/// million pairs at 10 % of 10 million points.
+inline size_t PairsReadAtMost(const std::vector<MergePair> &pairs, int clusterCount, const MaxErrorExchangeParams &param)
+{
+    const long long excludedAtMost = 3LL * param.maxRounds + 1 + 2LL * param.mergeCandidates;
+    if (excludedAtMost >= clusterCount) return pairs.size();
+    std::vector<int> pairsOf(size_t(clusterCount), 0);
+    for (const MergePair &p : pairs) {
+        ++pairsOf[size_t(p.a)];
+        ++pairsOf[size_t(p.b)];
+    }
+    std::nth_element(pairsOf.begin(), pairsOf.begin() + excludedAtMost, pairsOf.end(), std::greater<int>());
+    size_t bound = size_t(std::max(1, param.mergeCandidates));
+    for (long long c = 0; c < excludedAtMost; ++c) bound += size_t(pairsOf[size_t(c)]);
+    return std::min(bound, pairs.size());
+}
 
 /// Labels of a clustering changed for a trial, with what they were: Undo() restores them and the
 /// cluster count, and so does the destructor (an exception in a trial leaves the clustering as it
@@ -388,6 +416,8 @@ private:
 /// on the surface already.
 /// \pre points and unit normals as clustered, every point labelled, `graph` their neighbour
 ///      graph (the maker's too); clusters compact with clusterCount >= 1.
+/// `clusterLinks`, if given, is ClusterAdjacency of `clusters` (MergeToCount leaves it in its
+/// basis): taken over, and `graph` is then read for the fits' slots only.
 /// \post clusters.clusterCount unchanged; maxAfter <= maxBefore; deterministic: the result does
 ///       not depend on the thread count. Unless nothing was tried, `graph` keeps only its first
 ///       kOffsetNeighbors slots per point (KeepFirstSlots: what the maker's fits read; at 20 M
@@ -397,7 +427,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                                                   const MaxErrorExchangeParams &param, Clustering &clusters,
                                                   const SurfelMaker &maker,
                                                   std::vector<Surfel> &surfels,
-                                                  const std::function<bool(int)> &progress = nullptr)
+                                                  const std::function<bool(int)> &progress = nullptr,
+                                                  std::vector<std::vector<int>> *clusterLinks = nullptr)
 {
     MaxErrorExchangeResult result;
     const int count = clusters.clusterCount;
@@ -418,16 +449,24 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // next cheapest pairs merged the same neighbourhood back, and Delta*max stopped at 0.077
     // instead of 0.054). The pairs between the other clusters keep their links and costs, so
     // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
-    // Listed first: that reads every neighbour slot, the surfels and their fit only the first
-    // kOffsetNeighbors, so the graph is cut to those before the exchange's own buffers exist.
+    // The links read every neighbour slot, the surfels and their fit only the first
+    // kOffsetNeighbors: the graph is cut to those once the links are known, before the costs,
+    // the pairs and the exchange's own buffers exist.
     CheapestFirst pairs;
     {
-        const std::unique_ptr<MergeBasis> basis =
-            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&goOn](double) { return goOn(); });
-        if (basis && goOn()) pairs = CheapestFirst(LinkedPairs(basis->model, basis->adjacent));
+        const ClusterMembers members(clusters);
+        std::vector<std::vector<int>> links;
+        bool stopped = !goOn();
+        if (clusterLinks) links.swap(*clusterLinks);
+        else if (!stopped) links = ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
+        if (stopped || !goOn()) return result;
+        KeepFirstSlots(graph, kOffsetNeighbors);
+        const MergeCostModel model(points, normals, clusters, members, weightWidth);
+        if (!goOn()) return result;
+        std::vector<MergePair> linked = LinkedPairs(model, links);
+        const size_t readable = PairsReadAtMost(linked, count, param);
+        pairs = CheapestFirst(std::move(linked), readable);
     }
-    if (result.cancelled) return result;
-    KeepFirstSlots(graph, kOffsetNeighbors);
     SurfelMaker::Set current = maker.Make(clusters, goOn); // unfitted if cancelled before the fit
     if (result.cancelled || !goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);

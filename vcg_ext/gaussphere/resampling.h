@@ -498,34 +498,49 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             result.surfels = std::move(surface.surfels);
         }
     }
+    SurfelRecipe recipe;
+    recipe.generation = surfelParam;
+    recipe.creaseBlendScale = param.creaseBlendScale;
+    recipe.fitOffsets = param.fitOffsets;
+    recipe.creasePoints = normalization.creasePoints;
+    // Takes the crease narrowing from every slot of the graph: made before merging cuts it.
+    std::unique_ptr<const SurfelMaker> maker;
+    if (result.surfels.empty()) maker.reset(new SurfelMaker(points, normals, graph, recipe));
+    const bool exchanging = param.targetCount > 0 && param.maxErrorExchanges > 0;
+    std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
+    bool merged = false;                       // and then the graph holds the fit's slots only
     if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0) {
-        stats.mergesForTarget = MergeToCount(points, normals, graph, weightWidth, param.targetCount, clusters,
-                                             [cb](double done) {
-                                                 return cb == nullptr ||
-                                                        cb(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
-                                             });
+        const auto merging = [cb](double done) {
+            return cb == nullptr || cb(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
+        };
+        const std::unique_ptr<MergeBasis> basis =
+            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&merging](double done) { return merging(0.2 * done); });
+        if (!basis) throw ResamplingCancelled();
+        // From here on the surfels' fit reads the graph's first kOffsetNeighbors slots only, and the
+        // exchanges take the links from the merge: the rest goes before the merge's queue exists
+        // (32 B a point at k = 16).
+        KeepFirstSlots(graph, kOffsetNeighbors);
+        stats.mergesForTarget = MergeToCount(*basis, param.targetCount, clusters,
+                                             [&merging](double done) { return merging(0.2 + 0.8 * done); });
         if (stats.mergesForTarget == kRefinementCancelled) throw ResamplingCancelled();
+        mergedLinks.swap(basis->adjacent);
+        merged = true;
     }
     stats.secondsRefinement = timer.Lap();
 
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
-        SurfelRecipe recipe;
-        recipe.generation = surfelParam;
-        recipe.creaseBlendScale = param.creaseBlendScale;
-        recipe.fitOffsets = param.fitOffsets;
-        recipe.creasePoints = normalization.creasePoints;
-        if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
-            const SurfelMaker maker(points, normals, graph, recipe);
+        if (exchanging) {
             MaxErrorExchangeParams exchangeParam;
             exchangeParam.maxRounds = param.maxErrorExchanges;
             const MaxErrorExchangeResult exchange = ExchangeForMaxError(
-                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, maker, result.surfels,
+                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, *maker, result.surfels,
                 [cb, &param](int round) {
                     return cb == nullptr ||
                            cb(90 + 9 * round / param.maxErrorExchanges, "Gaussian sphere resampling: exchanges for the largest error");
-                });
+                },
+                merged ? &mergedLinks : nullptr);
             if (exchange.cancelled) throw ResamplingCancelled();
             stats.exchangesForMaxError = exchange.exchanges;
             stats.exchangeTrials = exchange.trials;
@@ -533,7 +548,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
         } else {
-            result.surfels = MakeSurfels(points, normals, graph, clusters, recipe, [cb]() {
+            result.surfels = maker->MakeFitted(clusters, [cb]() {
                 detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
             });
         }

@@ -70,18 +70,25 @@ public:
     };
 
     /// \pre points, unit normals and `graph` as clustered; they outlive the maker. Later, the
-    ///      graph may keep only its first kOffsetNeighbors slots (KeepFirstSlots): Make and
-    ///      Update read no further (MakeFitted reads all).
+    ///      graph may keep only its first kOffsetNeighbors slots (KeepFirstSlots): the maker
+    ///      reads no further.
     SurfelMaker(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                 const SurfelRecipe &recipe)
         : points_(points), normals_(normals), graph_(graph), recipe_(recipe),
           narrowing_(NarrowingFlags(graph, recipe.creaseBlendScale))
     {}
 
-    /// MakeSurfels(clusters): the fitted surfels alone.
-    std::vector<Surfel> MakeFitted(const Clustering &clusters) const
+    /// MakeSurfels(clusters) on the graph the maker was made with: the fitted surfels alone, fitted
+    /// in place. `beforeFit`, if given, is called between generation and fit (a progress report).
+    std::vector<Surfel> MakeFitted(const Clustering &clusters, const std::function<void()> &beforeFit = nullptr) const
     {
-        return MakeSurfels(points_, normals_, graph_, clusters, recipe_);
+        const ClusterMembers members(clusters);
+        std::vector<Surfel> surfels = Unfitted(clusters, members);
+        if (recipe_.fitOffsets) {
+            if (beforeFit) beforeFit();
+            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.creasePoints, surfels);
+        }
+        return surfels;
     }
 
     /// `beforeFit`, if given, is called between generation and fit (a progress report; also when
@@ -91,10 +98,7 @@ public:
     {
         Set s;
         const ClusterMembers members(clusters);
-        // UnfittedSurfels, the blends narrowed from the flags: the graph's rows beyond the fit's
-        // slots may be gone (ExchangeForMaxError keeps only those).
-        s.unfitted = GenerateSurfels(points_, normals_, graph_.spacing, clusters, members, recipe_.generation);
-        NarrowFlaggedBlends(narrowing_, clusters, recipe_.creaseBlendScale, s.unfitted);
+        s.unfitted = Unfitted(clusters, members);
         const bool fit = !beforeFit || beforeFit();
         s.fitted = s.unfitted;
         if (fit && recipe_.fitOffsets)
@@ -130,7 +134,7 @@ public:
             Surfel &surfel = s.unfitted[size_t(c)];
             surfel = MakeSurfel(points_, normals_, graph_.spacing, m.data(), m.data() + m.size(), recipe_.generation);
             if (!narrowing_.empty() && m.size() >= 2 &&
-                std::any_of(m.begin(), m.end(), [this](int i) { return narrowing_[size_t(i)] != 0; }))
+                std::any_of(m.begin(), m.end(), [this](int i) { return bool(narrowing_[size_t(i)]); }))
                 surfel.blendScale = recipe_.creaseBlendScale;
         }
         s.fitted = base.fitted;
@@ -176,10 +180,19 @@ public:
     }
 
 private:
+    /// UnfittedSurfels, the blends narrowed from the flags: the graph's rows beyond the fit's
+    /// slots may be gone.
+    std::vector<Surfel> Unfitted(const Clustering &clusters, const ClusterMembers &members) const
+    {
+        std::vector<Surfel> surfels = GenerateSurfels(points_, normals_, graph_.spacing, clusters, members, recipe_.generation);
+        NarrowFlaggedBlends(narrowing_, clusters, recipe_.creaseBlendScale, surfels);
+        return surfels;
+    }
+
     const PointArray &points_, &normals_;
     const NeighborGraph &graph_;
     SurfelRecipe recipe_;
-    std::vector<char> narrowing_;
+    std::vector<bool> narrowing_; // a bit a point: it lives through the surfels' stage
 };
 
 } // namespace gaussphere
