@@ -15,6 +15,7 @@
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
 #include <algorithm>
+#include <atomic>
 #include <vector>
 
 #include <vcg/space/point3.h>
@@ -44,46 +45,47 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
-    // The splitting planes of the clusters to split, listed as found, then in cluster order: not
-    // one per cluster (48 B each, a tenth of the memory at the level search's peak).
-    struct SplitPlane { int cluster; Eigen::Vector3d centroid, majorAxis; };
-    std::vector<SplitPlane> planes;
-#pragma omp parallel
-    {
-        std::vector<SplitPlane> found;
-#pragma omp for schedule(dynamic, 256) nowait
-        for (int c = 0; c < count; ++c) {
-            const int size = members.Size(c);
-            const bool atCrease = param.creasePoints && members.AnyFlagged(c, *param.creasePoints);
-            // At a crease the limits only tighten: the smaller cap, the smaller never-split size.
-            int maxSize = param.maxClusterSize, minSplit = param.minSplitSize;
-            if (atCrease) {
-                if (param.creaseClusterSize > 0)
-                    maxSize = maxSize > 0 ? std::min(maxSize, param.creaseClusterSize) : param.creaseClusterSize;
-                minSplit = std::min(minSplit, param.creaseMinSplitSize);
-            }
-            if (size < std::max(2, minSplit)) continue;
-            const bool tooLarge = maxSize > 0 && size > maxSize;
-            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-            for (const int *i = members.begin(c); i != members.end(c); ++i)
-                mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);
-            mean /= size;
-            CovarianceAccumulator cov;
-            for (const int *i = members.begin(c); i != members.end(c); ++i)
-                cov.Add(Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - mean);
-            const PrincipalAxes pa = ComputePrincipalAxes(cov.Covariance());
-            if (!(pa.value[0] > 0) || (!tooLarge && pa.value[0] <= param.threshold * pa.value[1])) continue;
-            found.push_back({c, mean, pa.axis.col(0)});
+    // The splitting planes of the clusters to split, filled from the front of a buffer as found:
+    // not a plane per cluster (48 B each, a tenth of the memory at the level search's peak); only
+    // the pages of the planes found are touched.
+    struct SplitPlane { Eigen::Vector3d centroid, majorAxis; };
+    FlatVector<SplitPlane> planes(size_t(std::max(0, count)));
+    IndexArray planeOf(size_t(std::max(0, count))); // -1: kept whole
+    std::atomic<int> planesFound(0);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int c = 0; c < count; ++c) {
+        planeOf[c] = -1;
+        const int size = members.Size(c);
+        const bool atCrease = param.creasePoints && members.AnyFlagged(c, *param.creasePoints);
+        // At a crease the limits only tighten: the smaller cap, the smaller never-split size.
+        int maxSize = param.maxClusterSize, minSplit = param.minSplitSize;
+        if (atCrease) {
+            if (param.creaseClusterSize > 0)
+                maxSize = maxSize > 0 ? std::min(maxSize, param.creaseClusterSize) : param.creaseClusterSize;
+            minSplit = std::min(minSplit, param.creaseMinSplitSize);
         }
-#pragma omp critical
-        planes.insert(planes.end(), found.begin(), found.end());
+        if (size < std::max(2, minSplit)) continue;
+        const bool tooLarge = maxSize > 0 && size > maxSize;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int *i = members.begin(c); i != members.end(c); ++i)
+            mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);
+        mean /= size;
+        CovarianceAccumulator cov;
+        for (const int *i = members.begin(c); i != members.end(c); ++i)
+            cov.Add(Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - mean);
+        const PrincipalAxes pa = ComputePrincipalAxes(cov.Covariance());
+        if (!(pa.value[0] > 0) || (!tooLarge && pa.value[0] <= param.threshold * pa.value[1])) continue;
+        const int slot = planesFound++;
+        planes[size_t(slot)] = {mean, pa.axis.col(0)};
+        planeOf[c] = slot;
     }
-    std::sort(planes.begin(), planes.end(), [](const SplitPlane &a, const SplitPlane &b) { return a.cluster < b.cluster; });
     int split = 0;
-    for (const SplitPlane &plane : planes) {
+    for (int c = 0; c < count; ++c) {
+        if (planeOf[c] < 0) continue;
+        const SplitPlane &plane = planes[size_t(planeOf[c])];
         const int newLabel = clusters.clusterCount;
         int moved = 0;
-        for (const int *i = members.begin(plane.cluster); i != members.end(plane.cluster); ++i) {
+        for (const int *i = members.begin(c); i != members.end(c); ++i) {
             const Eigen::Vector3d d = Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]) - plane.centroid;
             if (d.dot(plane.majorAxis) > 0) { clusters.label[*i] = newLabel; ++moved; }
         }
