@@ -345,7 +345,7 @@ const LedgerRow kLedger[] = {
     {"Gaussian triangle per point (int)", "resampling.h", 4, 0, "C"},
     {"cluster label (int)", "clustering.h", 4, 0, "CS"},
     {"ClusterMembers index (int) + offsets", "clustering.h", 4, 8, "cs"},
-    {"split planes: centroid + axis (2 Vector3d)", "cluster_normalization.h", 0, 48, "c"},
+    {"split planes: plane index (int) per cluster; centroid + axis (48 B) only per cluster split", "cluster_normalization.h", 0, 4, "c"},
     {"surfels (sizeof(Surfel) each, result)", "surfel_generation.h", 0, double(sizeof(vcg::gaussphere::Surfel)), "S"},
     {"offset fit: blend weight 20 B + offset 4 B per surfel, transient", "surfel_offset.h", 0, 24, "s"},
 };
