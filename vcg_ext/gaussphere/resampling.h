@@ -506,7 +506,6 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // Takes the crease narrowing from every slot of the graph: made before merging cuts it.
     std::unique_ptr<const SurfelMaker> maker;
     if (result.surfels.empty()) maker.reset(new SurfelMaker(points, normals, graph, recipe));
-    const bool exchanging = param.targetCount > 0 && param.maxErrorExchanges > 0;
     std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
     bool merged = false;                       // and then the graph holds the fit's slots only
     if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0) {
@@ -531,7 +530,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // 4. Surfels.
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
-        if (exchanging) {
+        if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
             MaxErrorExchangeParams exchangeParam;
             exchangeParam.maxRounds = param.maxErrorExchanges;
             const MaxErrorExchangeResult exchange = ExchangeForMaxError(
