@@ -8,12 +8,14 @@
 # models: names of ../shared/data/NAME.ply (default: every point set there). Absent ones are
 # skipped with a reason.
 #   full run  -> bench/results/: table1.md/.csv (n = 8, every model), figure7.md/.csv/_*.png
-#                (n = 8..24 on bunny, dragon, igea), raw/*.csv (gsbench's rows), header.txt
+#                (n = 8..24 on bunny, dragon, igea), raw/*.csv (gsbench's rows), header.txt;
+#                table1.md ends with the speed target (dragon, igea: warm and cold heap)
 #   --quick   -> bench/results/quick/: the shipped sample_data bunny and fandisk, one timing
 #                run, figure 7 at n = 8 and 16 on the bunny; a smoke run of well under a minute
 #
 # Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), RUNS (timed runs per
-# figure, default 3; the median is reported).
+# figure, default 3; the median is reported), SPEED_RUNS (rounds of the speed-target timing on
+# the dragon and the igea, default 5 x RUNS).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-bench}"
@@ -52,6 +54,24 @@ for name in "${present[@]}"; do
     --methods ours,ours-circular,cgal-hierarchy,cgal-hierarchy-var,cgal-grid,meshlab-poisson,floor
 done
 
+# The speed target (issue 5.3): ours against CGAL's hierarchy on the dragon and the igea, with
+# more rounds than table 1 and twice: with the heap as the previous rounds left it (warm), and
+# with the heap returned to the system before every run (--trim-heap, as for a first call in a
+# process). No process or error runs: table 1 has them.
+speed_runs="${SPEED_RUNS:-$((runs * 5))}"
+rm -f "$raw/speed_warm.csv" "$raw/speed_cold.csv"
+for name in dragon igea; do
+  if [[ " ${present[*]} " != *" $name "* ]]; then echo "[bench] skip the speed target on $name: not among the models run"; continue; fi
+  for heap in warm cold; do
+    echo "[bench] speed target: $name ($heap heap, $speed_runs rounds) at $((SECONDS - started)) s"
+    trim=(); [ "$heap" = cold ] && trim=(--trim-heap)
+    "$gsbench" compare "$data/$name.ply" --name "$name" --level 8 --runs "$speed_runs" --no-process "${trim[@]}" \
+      --csv "$raw/speed_$heap.csv" --work "$work" --methods ours,cgal-hierarchy
+  done
+done
+
+echo "Speed target: $speed_runs rounds per method and heap state." >> "$out/header.txt"
+
 # Figure 7: the n = 8 points come from the table-1 run above.
 for name in "${figure7_models[@]}"; do
   if [ ! -f "$data/$name.ply" ]; then echo "[bench] skip figure 7 on $name: not found"; continue; fi
@@ -69,5 +89,6 @@ echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((S
 python=python3
 /usr/bin/python3 -c 'import matplotlib' 2>/dev/null && python=/usr/bin/python3
 "$python" "$root/bench/report.py" --table1 "$raw/table1.csv" --figure7 "$raw/figure7.csv" \
+  --speed-warm "$raw/speed_warm.csv" --speed-cold "$raw/speed_cold.csv" \
   --figure7-models "${figure7_models[*]}" --out "$out" --header "$out/header.txt"
 echo "[bench] done in $((SECONDS - started)) s: $out/table1.md, $out/figure7.md"

@@ -117,6 +117,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
         // One vector serves both orders: a stack popped at the back, or a queue read from
         // `head` (cleared when a seed's cluster is complete).
         std::vector<Visit> pending;
+        const int othersLabel = -3; // read for a neighbour of another triangle instead of its label
         // Every thread walks all of seedOrder, so that each triangle's seeds come in its order.
         for (int position = 0; position < seedCount; ++position) {
             if (position % reportEvery == 0) {
@@ -151,7 +152,9 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                 Visit *next = pending.data() + before;
                 for (; q != qEnd; ++q) {
                     const int j = *q;
-                    const bool joins = (triangle[j] == t) & (__atomic_load_n(label + j, __ATOMIC_RELAXED) == unlabelled) &
+                    const bool sameTriangle = triangle[j] == t;
+                    const int *labelOfJ = sameTriangle ? label + j : &othersLabel;
+                    const bool joins = sameTriangle & (__atomic_load_n(labelOfJ, __ATOMIC_RELAXED) == unlabelled) &
                                        ((normals[j] - ref).SquaredNorm() <= maxChord2);
                     *next = {j, v.depth + 1};
                     next += joins;
