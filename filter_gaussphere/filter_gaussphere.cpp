@@ -251,10 +251,10 @@ bool FilterGaussSpherePlugin::resample(MeshDocument &md, const RichParameterList
 
     const gs::ResamplingStats &s = result.stats;
     Log("Gaussian sphere resampling: %d points -> %d surfels (%.2f%%), level %d, %d iteration(s), "
-        "%.1f adaptive neighbours per point, L2,1 RMS %.4f; time %.3f s (neighbours %.3f, propagation %.3f, "
+        "%.1f adaptive neighbours per point, L2,1 RMS %.4f; time %.3f s on %d thread(s) (neighbours %.3f, propagation %.3f, "
         "normalization %.3f, refinement %.3f, surfels %.3f, exchanges %.3f)",
         s.inputCount - s.skippedCount, s.outputCount, 100.0 * s.outputCount / std::max(1, s.inputCount - s.skippedCount),
-        s.levelUsed, s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.TotalSeconds(), s.secondsNeighbors,
+        s.levelUsed, s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.TotalSeconds(), s.threadsUsed, s.secondsNeighbors,
         s.secondsPropagation, s.secondsNormalization, s.secondsRefinement, s.secondsSurfels, s.secondsExchanges);
     if (s.surfelsNarrowedAtCreases > 0)
         Log("Gaussian sphere resampling: %d surfel(s) around creases blend %.2f times as wide", s.surfelsNarrowedAtCreases,

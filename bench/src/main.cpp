@@ -246,6 +246,8 @@ struct Row
     int splitsForSurfaceBound = 0, pointsAboveBound = 0; ///< ours only: ResamplingStats
     double ownPlaneMax = kNaN;      ///< ours only: see MaxOwnPlaneDistance
     double dstarAboveFraction = kNaN; ///< with maxError: fraction of input points with D* > maxError
+    int reducedThreadRuns = 0;      ///< ours only: timed runs that took fewer threads than `threads`
+                                    ///< (other programs kept CPUs busy: ResamplingParams::adaptThreads)
 };
 
 const char *kCsvHeader =
@@ -253,7 +255,7 @@ const char *kCsvHeader =
     "time_alg_s,time_process_s,peak_mb,l21_own_rms,l21_own_max,l21_own_p999,l21_blend_rms,"
     "l21_blend_max,l21_blend_p999,dstar_rms,dstar_max,dstar_p999,unconverged,diagonal,"
     "target_percent,target_points,max_error,level_used,splits_error_bound,splits_target,merges_target,"
-    "own_plane_max,dstar_above_max_error,splits_surface_bound,points_above_bound";
+    "own_plane_max,dstar_above_max_error,splits_surface_bound,points_above_bound,reduced_thread_runs";
 
 std::string Number(double v, int digits = 6)
 {
@@ -286,7 +288,8 @@ std::string CsvLine(const Row &r)
          << (r.maxError > 0 ? Number(r.maxError) : "") << ',' << oursInt(r.levelUsed) << ','
          << oursInt(r.splitsForErrorBound) << ',' << oursInt(r.splitsForTarget) << ',' << oursInt(r.mergesForTarget)
          << ',' << Number(r.ownPlaneMax) << ',' << Number(r.dstarAboveFraction) << ','
-         << oursInt(r.splitsForSurfaceBound) << ',' << oursInt(r.pointsAboveBound);
+         << oursInt(r.splitsForSurfaceBound) << ',' << oursInt(r.pointsAboveBound) << ','
+         << (r.method == "ours" ? std::to_string(r.reducedThreadRuns) : "");
     return line.str();
 }
 
@@ -307,6 +310,9 @@ void WriteRows(const std::string &path, const std::vector<Row> &rows)
 
 void Announce(const Row &r)
 {
+    if (r.reducedThreadRuns > 0)
+        std::fprintf(stderr, "  warning: %d timed run(s) of %s/%dt took fewer threads: other programs kept CPUs busy\n",
+                     r.reducedThreadRuns, r.method.c_str(), r.threads);
     std::fprintf(stderr, "  %-16s %8d pts %s | alg %s s, process %s s, %s MB | L21 own %s/%s blend %s/%s | D* %s/%s\n",
                  (r.method + (r.threads ? "/" + std::to_string(r.threads) + "t" : "")).c_str(), r.points,
                  r.parameters.c_str(), Number(r.timeAlg, 3).c_str(), Number(r.timeProcess, 3).c_str(),
@@ -473,12 +479,14 @@ int Compare(const std::string &inputPath, const Options &opt)
                 r.timeProcess = f.seconds;
                 r.peakMegabytes = f.peakMegabytes;
             }
-            if (wanted("ours"))
-                timings.Add(finish(r), [&input, config, threads]() {
+            if (wanted("ours")) {
+                const size_t index = finish(r);
+                timings.Add(index, [&input, &rows, index, config, threads]() {
                     double s = 0;
-                    RunOurs(input, config, threads, &s);
+                    rows[index].reducedThreadRuns += RunOurs(input, config, threads, &s).stats.threadsUsed < threads;
                     return s;
                 });
+            }
         }
     }
     const int target = ours.Count();

@@ -147,11 +147,11 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet s = BumpySphere(8000, 3);
     ResamplingResult one, two;
     {
-        gstest::ThreadCount t(1);
+        vcg::gaussphere::ScopedThreadCount t(1);
         one = gstest::Resample(s, Bounded(2e-4));
     }
     {
-        gstest::ThreadCount t(2);
+        vcg::gaussphere::ScopedThreadCount t(2);
         two = gstest::Resample(s, Bounded(2e-4));
     }
     EXPECT_GT(one.stats.splitsForSurfaceBound, 0);
@@ -162,11 +162,11 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     // With narrowed surfels (sharp edges): the same axes too.
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     {
-        gstest::ThreadCount t(1);
+        vcg::gaussphere::ScopedThreadCount t(1);
         one = gstest::Resample(cube, Bounded(1e-4));
     }
     {
-        gstest::ThreadCount t(2);
+        vcg::gaussphere::ScopedThreadCount t(2);
         two = gstest::Resample(cube, Bounded(1e-4));
     }
     EXPECT_GT(one.stats.narrowingsForSurfaceBound, 0);

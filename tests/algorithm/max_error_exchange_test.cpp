@@ -183,11 +183,11 @@ TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     ResamplingResult one, two;
     {
-        gstest::ThreadCount t(1);
+        vcg::gaussphere::ScopedThreadCount t(1);
         one = gstest::Resample(cube, AtTarget(150, 16));
     }
     {
-        gstest::ThreadCount t(2);
+        vcg::gaussphere::ScopedThreadCount t(2);
         two = gstest::Resample(cube, AtTarget(150, 16));
     }
     EXPECT_GT(one.stats.exchangesForMaxError, 0);

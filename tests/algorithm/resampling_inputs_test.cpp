@@ -78,11 +78,11 @@ TEST(ResamplingInputs, UnusableVerticesAreSkippedAndCounted)
     for (int i = 1; i < 700; i += 3) s.normals[i] = P3(0, 0, 0);
     ResamplingResult one;
     {
-        const gstest::ThreadCount t(1);
+        const vcg::gaussphere::ScopedThreadCount t(1);
         one = gstest::Resample(s);
     }
     for (int threads : {2, 3}) {
-        const gstest::ThreadCount t(threads);
+        const vcg::gaussphere::ScopedThreadCount t(threads);
         const ResamplingResult many = gstest::Resample(s);
         EXPECT_EQ(many.stats.skippedCount, one.stats.skippedCount);
         EXPECT_EQ(many.representative, one.representative) << threads << " threads";

@@ -217,11 +217,11 @@ TEST(ResamplingPipeline, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet s = NoisySphere(20000, 21);
     ResamplingResult one, two;
     {
-        gstest::ThreadCount t(1);
+        vcg::gaussphere::ScopedThreadCount t(1);
         one = gstest::Resample(s);
     }
     {
-        gstest::ThreadCount t(2);
+        vcg::gaussphere::ScopedThreadCount t(2);
         two = gstest::Resample(s);
     }
     ASSERT_EQ(one.surfels.size(), two.surfels.size());

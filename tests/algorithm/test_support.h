@@ -10,10 +10,9 @@
 #include <random>
 #include <vector>
 
-#include <omp.h>
-
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
+#include <vcg_ext/gaussphere/thread_budget.h>
 
 namespace gstest {
 
@@ -134,16 +133,6 @@ inline vcg::gaussphere::NeighborGraph MakeGraph(const std::vector<std::vector<in
     }
     return g;
 }
-
-/// Sets the OpenMP thread count for a scope and restores it afterwards.
-class ThreadCount
-{
-public:
-    explicit ThreadCount(int n) : saved_(omp_get_max_threads()) { omp_set_num_threads(n); }
-    ~ThreadCount() { omp_set_num_threads(saved_); }
-private:
-    int saved_;
-};
 
 /// Sizes of the clusters of a labelling (label -> member count), ignoring -1.
 inline std::map<int, int> ClusterSizes(const IndexArray &label)

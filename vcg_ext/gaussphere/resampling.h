@@ -78,6 +78,7 @@
 #include "surfel_generation.h"
 #include "surfel_offset.h"
 #include "surfel_recipe.h"
+#include "thread_budget.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -113,6 +114,9 @@ struct ResamplingParams
     double maxErrorFraction = 0;     ///< bound on each point's distance to its surfel's plane, then
                                      ///< to the blended surface (surface_error_bound.h), as a fraction
                                      ///< of the bbox diagonal (0 = off)
+    bool adaptThreads = true;        ///< fewer threads than OpenMP's maximum while other programs keep
+                                     ///< CPUs busy (thread_budget.h); false: always the maximum. The
+                                     ///< output is the same either way
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string Validate() const
@@ -167,6 +171,8 @@ struct ResamplingStats
     int exchangeTrials = 0;        ///< ... surfel sets measured for them
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
+    int threadsUsed = 0;           ///< OpenMP threads the run took, the fewest of its stages
+                                   ///< (ResamplingParams::adaptThreads)
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
@@ -298,6 +304,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     const ReuseLargeBuffers reuse; // first: it outlives every buffer of the run
     ResamplingResult result;
     ResamplingStats &stats = result.stats;
+    RunThreads threads(param.adaptThreads);
     detail::StageTimer timer;
     detail::Report(cb, 0, "Gaussian sphere resampling: reading points");
 
@@ -344,6 +351,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     });
     grid.reset();
     if (graph.Size() != n) throw ResamplingCancelled();
+    threads.Recheck();
     stats.secondsNeighbors = timer.Lap();
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
 
@@ -364,6 +372,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         double meanAdaptiveNeighbors = 0;
     };
     auto clusterAtLevel = [&](int level) {
+        threads.Recheck();
         LevelResult r;
         r.level = level;
         const GaussianSphere sphere(level, param.base);
@@ -498,6 +507,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             result.surfels = std::move(surface.surfels);
         }
     }
+    threads.Recheck();
     SurfelRecipe recipe;
     recipe.generation = surfelParam;
     recipe.creaseBlendScale = param.creaseBlendScale;
@@ -528,6 +538,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     stats.secondsRefinement = timer.Lap();
 
     // 4. Surfels.
+    threads.Recheck();
     detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
     if (result.surfels.empty()) {
         if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
@@ -575,6 +586,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     }
     stats.normalErrorRms = std::sqrt(sumSquares / n);
     stats.outputCount = int(result.surfels.size());
+    stats.threadsUsed = threads.Fewest();
     stats.secondsSurfels = timer.Lap();
     detail::Report(cb, 100, "Gaussian sphere resampling: done");
     return result;
