@@ -126,14 +126,20 @@ inline int BlendedAroundSample(const PointArray &normals, const NeighborGraph &g
 /// [begin, end), in increasing order), from the unfitted `surfels` of every cluster and
 /// `weightOf(l)`, the detail::BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
 /// a member flagged in creasePoints, or no move within maxPlaneDistance).
+/// With `atCreases`, the move is computed for crease clusters and narrowed blends too (the
+/// exchanges' last step, ExchangeForMaxError, keeps it only where the measure allows).
 template <class WeightOf>
 float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                      const IndexArray &label, const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels,
-                     WeightOf &&weightOf, int c, const int *begin, const int *end, double maxPlaneDistance)
+                     WeightOf &&weightOf, int c, const int *begin, const int *end, double maxPlaneDistance,
+                     bool atCreases = false)
 {
+    if (begin == end) return 0.f;
     // Crease clusters and narrowed blends stay (file header).
-    if (surfels[c].blendScale < 1 || begin == end) return 0.f;
-    if (creasePoints && std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; })) return 0.f;
+    if (!atCreases && surfels[c].blendScale < 1) return 0.f;
+    if (!atCreases && creasePoints &&
+        std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; }))
+        return 0.f;
     int around[kOffsetNeighbors + 1]; // surfels blended at a point
     float exponent[kOffsetNeighbors + 1];
     double sum = 0;
@@ -175,6 +181,15 @@ float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const 
         move = least <= most ? std::max(least, std::min(move, most)) : 0.0;
     }
     return float(move);
+}
+
+/// Whether FitSurfelOffsets leaves cluster c (members [begin, end)) in place: a narrowed blend or
+/// a member flagged in creasePoints (null: none).
+inline bool StaysAtCrease(const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels, int c,
+                          const int *begin, const int *end)
+{
+    return surfels[c].blendScale < 1 ||
+           (creasePoints && std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; }));
 }
 
 /// Applies a move from SurfelOffsetOf to a surfel.

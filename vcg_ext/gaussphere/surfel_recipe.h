@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "adaptive_neighbors.h"
@@ -177,6 +178,32 @@ public:
             surfel = s.unfitted[size_t(refit[t])];
             MoveSurfel(surfel, offset[t]);
         }
+    }
+
+    /// The moves FitSurfelOffsets would give the surfels of `set` (= Make(clusters), members =
+    /// ClusterMembers(clusters)) that it leaves at creases (StaysAtCrease), for the clusters of at
+    /// least minMembers members: (cluster, move) for every non-zero move, clusters ascending.
+    /// Empty when the recipe fits nothing. Each move reads the unfitted surfels only, so the moves
+    /// of any subset may be applied to set.fitted together.
+    std::vector<std::pair<int, float>> CreaseMoves(const Set &set, const Clustering &clusters,
+                                                   const ClusterMembers &members, int minMembers) const
+    {
+        std::vector<std::pair<int, float>> moves;
+        if (!recipe_.fitOffsets) return moves;
+        const int count = clusters.clusterCount;
+        std::vector<float> offset(size_t(count), 0.f);
+        auto weightOf = [&set](int l) { return detail::BlendWeight(set.unfitted[size_t(l)]); };
+#pragma omp parallel for schedule(dynamic, 64)
+        for (int c = 0; c < count; ++c) {
+            if (members.Size(c) < std::max(1, minMembers) ||
+                !StaysAtCrease(recipe_.creasePoints, set.unfitted, c, members.begin(c), members.end(c)))
+                continue;
+            offset[size_t(c)] = SurfelOffsetOf(points_, normals_, graph_, clusters.label, recipe_.creasePoints,
+                                               set.unfitted, weightOf, c, members.begin(c), members.end(c), 0.0, true);
+        }
+        for (int c = 0; c < count; ++c)
+            if (offset[size_t(c)] != 0) moves.push_back({c, offset[size_t(c)]});
+        return moves;
     }
 
 private:
