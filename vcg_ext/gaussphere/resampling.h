@@ -169,6 +169,7 @@ struct ResamplingStats
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     int exchangesForMaxError = 0;  ///< cluster exchanges kept at targetCount (maxErrorExchanges)
     int exchangeTrials = 0;        ///< ... surfel sets measured for them
+    int creaseFitsForMaxError = 0; ///< ... surfels at creases fitted by their last step (max_error_exchange.h)
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
     int threadsUsed = 0;           ///< OpenMP threads the run took, the fewest of its stages
@@ -554,6 +555,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             if (exchange.cancelled) throw ResamplingCancelled();
             stats.exchangesForMaxError = exchange.exchanges;
             stats.exchangeTrials = exchange.trials;
+            stats.creaseFitsForMaxError = exchange.creaseFits;
             stats.exchangeMaxBefore = stats.diagonal > 0 ? exchange.maxBefore / stats.diagonal : 0.0;
             stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
