@@ -81,6 +81,7 @@ TEST(ThreadBudget, OwnSpinningThreadsAreRunnableAndNotCountedAsBusyElsewhere)
     EXPECT_GE(detail::OwnRunnableThreads(), 3);
     EXPECT_GE(detail::SystemRunnableTasks(), 3);
     EXPECT_GE(CpusBusyElsewhere(), 0);
+    EXPECT_GE(detail::RunnableThreadsElsewhere(), 0); // this process's threads are not among them
 }
 
 TEST(ThreadBudget, AnotherBusyProcessTakesACpuFromTheRun)
@@ -90,6 +91,7 @@ TEST(ThreadBudget, AnotherBusyProcessTakesACpuFromTheRun)
     const BusyProcess other;
     ASSERT_TRUE(other.Started());
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_GE(detail::RunnableThreadsElsewhere(), 1); // the confirmation finds it task by task
     EXPECT_GE(CpusBusyElsewhere(), 1);
     EXPECT_LE(ThreadsForRun(cpus), std::max(1, cpus - 1));
     EXPECT_GE(ThreadsForRun(cpus), 1);
