@@ -388,6 +388,7 @@ TEST(MaxErrorExchange, FitsCreaseSurfelsWhereTheErrorFalls)
             s.fitOffset = 0;
         }
         EXPECT_GT(movedAtCreases, 0) << target;
+        EXPECT_GE(with.stats.creaseFitsForMaxError, movedAtCreases) << target; // reported in the stats
         const gstest::Measured before = gstest::Measure(cube, without), after = gstest::Measure(cube, with);
         const vcg::tri::SurfelErrorStats &b = before.stats, &a = after.stats;
         EXPECT_LT(a.normalizedDistance.rms, b.normalizedDistance.rms) << target;

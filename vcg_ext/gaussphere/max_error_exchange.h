@@ -85,7 +85,15 @@ struct MaxErrorExchangeParams
     /// ... tried at most this many times: each failed trial drops the moves of the surfels within
     /// reach of the points whose figures rose.
     int creaseFitTrials = 4;
+    /// ... on inputs of at most this many points: the step projects every point on a surface of
+    /// all the surfels, which at a million points took the run's memory peak from 146 to 165
+    /// B a point beyond the input (over the 150 of bench/scale) and their time from 1.5 to 3.8 s;
+    /// the benchmark's models (up to the dragon's 437,645 points) all have it.
+    int creaseFitMaxPoints = 500000;
 };
+
+/// Points projected at a time for the blended normal errors of the crease fit.
+constexpr int kNormalErrorBlock = 1 << 16;
 
 struct MaxErrorExchangeResult
 {
@@ -250,15 +258,20 @@ public:
     }
 
     /// |n_q - blended normal| at every point for `surfels`, the set last measured (one projection
-    /// of every point on a surface of all of them).
+    /// of every point on a surface of all of them, in blocks: the distances and reaches it also
+    /// gives are not kept, 12 B a point at the exchanges' memory peak).
     std::vector<float> NormalErrors(const std::vector<Surfel> &surfels) const
     {
         const int n = int(points_.size());
         std::vector<float> normalError(points_.size(), 0.f);
         if (n == 0 || surfels.empty()) return normalError;
-        std::vector<double> distance(points_.size());
-        std::vector<float> reach(points_.size());
-        Project(BlendedSurfaceOf(surfels, metric_), nullptr, 0, n, distance.data(), reach.data(), normalError.data());
+        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
+        const int block = std::min(n, kNormalErrorBlock);
+        std::vector<double> distance(static_cast<size_t>(block));
+        std::vector<float> reach(static_cast<size_t>(block));
+        for (int first = 0; first < n; first += block)
+            Project(surface, nullptr, first, std::min(block, n - first), distance.data(), reach.data(),
+                    normalError.data() + first);
         return normalError;
     }
 
@@ -608,7 +621,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // squared distances must fall, and neither the largest distance, nor the number of points
     // beyond the 99.9th percentiles of the distance and of the blended normal error (as they were
     // before this step) may rise, so neither percentile rises.
-    if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn()) {
+    if (!result.cancelled && param.creaseFitMinMembers > 0 && int(points.size()) <= param.creaseFitMaxPoints && goOn()) {
         const ClusterMembers members(clusters);
         const std::vector<std::pair<int, float>> moves =
             maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
@@ -618,13 +631,15 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         int distanceBeyond = 0, normalBeyond = 0;
         if (!moves.empty() && goOn()) {
             normalError = distances.NormalErrors(current.fitted);
-            std::vector<double> d(points.size());
+            // One copy of the figures at a time (8 B a point).
+            std::vector<double> figures(points.size());
             for (int i = 0; i < n; ++i) {
-                d[size_t(i)] = distances.Distance(i);
-                sumOfSquares += d[size_t(i)] * d[size_t(i)]; // in point order: the same for any thread count
+                figures[size_t(i)] = distances.Distance(i);
+                sumOfSquares += figures[size_t(i)] * figures[size_t(i)]; // in point order: the same for any thread count
             }
-            distanceLimit = vcg::tri::NearestRankPercentile(std::move(d), 99.9);
-            normalLimit = vcg::tri::NearestRankPercentile(std::vector<double>(normalError.begin(), normalError.end()), 99.9);
+            distanceLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
+            figures.assign(normalError.begin(), normalError.end());
+            normalLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
             for (int i = 0; i < n; ++i) {
                 distanceBeyond += distances.Distance(i) > distanceLimit;
                 normalBeyond += normalError[size_t(i)] > normalLimit;
