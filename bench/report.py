@@ -386,8 +386,8 @@ def speed_target(warm, cold):
                 cells += ["–"] * 4
                 continue
             t1, t2, tp = num(one, "time_alg_s"), num(two, "time_alg_s"), num(peer, "time_alg_s")
-            reduced = int(num(two, "reduced_thread_runs")) if not math.isnan(num(two, "reduced_thread_runs")) else 0
-            note = f" ({reduced} runs on fewer threads: CPUs busy)" if reduced else ""
+            reduced = num(two, "reduced_thread_runs")
+            note = f" ({int(reduced)} runs on fewer threads: CPUs busy)" if reduced > 0 else ""
             cells += [fmt(t1, "s"), fmt(t2, "s") + note, fmt(tp, "s"), fmt(ratio(t2, tp), "x")]
         lines.append(cells)
     return md_table(["model", "warm: ours 1 thread s", "ours 2 threads s", "hierarchy s", "ours 2 threads / hierarchy",

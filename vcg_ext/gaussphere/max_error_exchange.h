@@ -476,6 +476,87 @@ private:
     std::vector<std::pair<int, int>> before_;
 };
 
+namespace detail {
+
+/// ExchangeForMaxError's last step (file header): the surfels of `current` left at creases, fitted
+/// where the measure allows it. `distances` has measured current.fitted; a kept fit is accepted
+/// there and swapped into `current`. Counts its measures in `trials`; returns the surfels fitted.
+template <class GoOn>
+int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const SurfelMaker &maker,
+                     const MaxErrorExchangeParams &param, BlendedDistances &distances, SurfelMaker::Set &current,
+                     int &trials, GoOn &&goOn)
+{
+    // The surfels left at creases (surfel_offset.h), fitted where the measure allows it: the sum of
+    // squared distances must fall, and neither the largest distance, nor the number of points
+    // beyond the 99.9th percentiles of the distance and of the blended normal error (as they were
+    // before this step) may rise, so neither percentile rises.
+    const ClusterMembers members(clusters);
+    const std::vector<std::pair<int, float>> moves =
+        maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
+    if (moves.empty() || !goOn()) return 0;
+    const int n = int(points.size());
+    const std::vector<float> normalError = distances.NormalErrors(current.fitted);
+    double sumOfSquares = 0;
+    // One copy of the figures at a time (8 B a point).
+    std::vector<double> figures(points.size());
+    for (int i = 0; i < n; ++i) {
+        figures[size_t(i)] = distances.Distance(i);
+        sumOfSquares += figures[size_t(i)] * figures[size_t(i)]; // in point order: the same for any thread count
+    }
+    const double distanceLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
+    figures.assign(normalError.begin(), normalError.end());
+    const double normalLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
+    int distanceBeyond = 0, normalBeyond = 0;
+    for (int i = 0; i < n; ++i) {
+        distanceBeyond += distances.Distance(i) > distanceLimit;
+        normalBeyond += normalError[size_t(i)] > normalLimit;
+    }
+    // All moves at once; where that raises a figure, the moves of the surfels within reach of
+    // the points that rose are dropped and the rest tried again, up to creaseFitTrials times.
+    std::vector<std::pair<int, float>> kept = moves;
+    std::vector<Surfel> fitted;
+    for (int attempt = 0; attempt < param.creaseFitTrials && !kept.empty() && goOn(); ++attempt) {
+        fitted = current.fitted;
+        for (const auto &move : kept) MoveSurfel(fitted[size_t(move.first)], move.second);
+        ++trials;
+        BlendedDistances::Measure measure = distances.Try(current.fitted, fitted);
+        double squares = sumOfSquares;
+        int dBeyond = distanceBeyond, nBeyond = normalBeyond;
+        std::vector<size_t> rose; // indices into measure.points
+        for (size_t t = 0; t < measure.points.size(); ++t) {
+            const int i = measure.points[t];
+            const double before = distances.Distance(i), after = measure.distance[t];
+            squares += after * after - before * before;
+            const bool distanceRose = after > distanceLimit && !(before > distanceLimit);
+            const bool normalRose = measure.normalError[t] > normalLimit && !(normalError[size_t(i)] > normalLimit);
+            dBeyond += int(after > distanceLimit) - int(before > distanceLimit);
+            nBeyond += int(measure.normalError[t] > normalLimit) - int(normalError[size_t(i)] > normalLimit);
+            if (distanceRose || normalRose || after > distances.Max()) rose.push_back(t);
+        }
+        if (!(squares < sumOfSquares)) break;
+        if (measure.max <= distances.Max() && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
+            distances.Accept(std::move(measure));
+            current.fitted.swap(fitted);
+            return int(kept.size());
+        }
+        std::vector<std::pair<int, float>> rest;
+        for (const auto &move : kept) {
+            const vcg::Point3d c = vcg::Point3d::Construct(fitted[size_t(move.first)].position);
+            bool near = false;
+            for (size_t t : rose) {
+                const double r = measure.reach[t];
+                near = near || (c - vcg::Point3d::Construct(points[size_t(measure.points[t])])).SquaredNorm() <= r * r;
+            }
+            if (!near) rest.push_back(move);
+        }
+        if (rest.size() == kept.size()) break; // nothing to drop: the rise is not local
+        kept.swap(rest);
+    }
+    return 0;
+}
+
+} // namespace detail
+
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
 /// to the blended surface of the surfels `maker` makes of them (file header), measured as
 /// vcg::tri::ComputeSurfelError measures it (default SurfelErrorParams) over the bounding-box
@@ -617,79 +698,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         if (!kept) break;
         ++result.exchanges;
     }
-    // The surfels left at creases (surfel_offset.h), fitted where the measure allows it: the sum of
-    // squared distances must fall, and neither the largest distance, nor the number of points
-    // beyond the 99.9th percentiles of the distance and of the blended normal error (as they were
-    // before this step) may rise, so neither percentile rises.
-    if (!result.cancelled && param.creaseFitMinMembers > 0 && int(points.size()) <= param.creaseFitMaxPoints && goOn()) {
-        const ClusterMembers members(clusters);
-        const std::vector<std::pair<int, float>> moves =
-            maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
-        const int n = int(points.size());
-        std::vector<float> normalError;
-        double sumOfSquares = 0, distanceLimit = 0, normalLimit = 0;
-        int distanceBeyond = 0, normalBeyond = 0;
-        if (!moves.empty() && goOn()) {
-            normalError = distances.NormalErrors(current.fitted);
-            // One copy of the figures at a time (8 B a point).
-            std::vector<double> figures(points.size());
-            for (int i = 0; i < n; ++i) {
-                figures[size_t(i)] = distances.Distance(i);
-                sumOfSquares += figures[size_t(i)] * figures[size_t(i)]; // in point order: the same for any thread count
-            }
-            distanceLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
-            figures.assign(normalError.begin(), normalError.end());
-            normalLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
-            for (int i = 0; i < n; ++i) {
-                distanceBeyond += distances.Distance(i) > distanceLimit;
-                normalBeyond += normalError[size_t(i)] > normalLimit;
-            }
-        }
-        // All moves at once; where that raises a figure, the moves of the surfels within reach of
-        // the points that rose are dropped and the rest tried again, up to creaseFitTrials times.
-        std::vector<std::pair<int, float>> kept = normalError.empty() ? std::vector<std::pair<int, float>>() : moves;
-        std::vector<Surfel> fitted;
-        for (int attempt = 0; attempt < param.creaseFitTrials && !kept.empty() && goOn(); ++attempt) {
-            fitted = current.fitted;
-            for (const auto &move : kept) MoveSurfel(fitted[size_t(move.first)], move.second);
-            ++result.trials;
-            BlendedDistances::Measure measure = distances.Try(current.fitted, fitted);
-            double squares = sumOfSquares;
-            int dBeyond = distanceBeyond, nBeyond = normalBeyond;
-            std::vector<size_t> rose; // indices into measure.points
-            for (size_t t = 0; t < measure.points.size(); ++t) {
-                const int i = measure.points[t];
-                const double before = distances.Distance(i), after = measure.distance[t];
-                squares += after * after - before * before;
-                const bool distanceRose = after > distanceLimit && !(before > distanceLimit);
-                const bool normalRose = measure.normalError[t] > normalLimit && !(normalError[size_t(i)] > normalLimit);
-                dBeyond += int(after > distanceLimit) - int(before > distanceLimit);
-                nBeyond += int(measure.normalError[t] > normalLimit) - int(normalError[size_t(i)] > normalLimit);
-                if (distanceRose || normalRose || after > distances.Max()) rose.push_back(t);
-            }
-            if (!(squares < sumOfSquares)) break;
-            if (measure.max <= distances.Max() && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
-                for (size_t t = 0; t < measure.points.size(); ++t)
-                    normalError[size_t(measure.points[t])] = measure.normalError[t];
-                distances.Accept(std::move(measure));
-                current.fitted.swap(fitted);
-                result.creaseFits = int(kept.size());
-                break;
-            }
-            std::vector<std::pair<int, float>> rest;
-            for (const auto &move : kept) {
-                const vcg::Point3d c = vcg::Point3d::Construct(fitted[size_t(move.first)].position);
-                bool near = false;
-                for (size_t t : rose) {
-                    const double r = measure.reach[t];
-                    near = near || (c - vcg::Point3d::Construct(points[size_t(measure.points[t])])).SquaredNorm() <= r * r;
-                }
-                if (!near) rest.push_back(move);
-            }
-            if (rest.size() == kept.size()) break; // nothing to drop: the rise is not local
-            kept.swap(rest);
-        }
-    }
+    if (!result.cancelled && param.creaseFitMinMembers > 0 && int(points.size()) <= param.creaseFitMaxPoints && goOn())
+        result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials, goOn);
     result.maxAfter = distances.Max();
     surfels = std::move(current.fitted);
     return result;

@@ -122,6 +122,15 @@ inline int BlendedAroundSample(const PointArray &normals, const NeighborGraph &g
     return blended;
 }
 
+/// Whether FitSurfelOffsets leaves cluster c (members [begin, end)) in place: a narrowed blend or
+/// a member flagged in creasePoints (null: none).
+inline bool StaysAtCrease(const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels, int c,
+                          const int *begin, const int *end)
+{
+    return surfels[c].blendScale < 1 ||
+           (creasePoints && std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; }));
+}
+
 /// The move along its normal that FitSurfelOffsets gives the surfel of cluster c (members
 /// [begin, end), in increasing order), from the unfitted `surfels` of every cluster and
 /// `weightOf(l)`, the detail::BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
@@ -134,12 +143,8 @@ float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const 
                      WeightOf &&weightOf, int c, const int *begin, const int *end, double maxPlaneDistance,
                      bool atCreases = false)
 {
-    if (begin == end) return 0.f;
     // Crease clusters and narrowed blends stay (file header).
-    if (!atCreases && surfels[c].blendScale < 1) return 0.f;
-    if (!atCreases && creasePoints &&
-        std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; }))
-        return 0.f;
+    if (begin == end || (!atCreases && StaysAtCrease(creasePoints, surfels, c, begin, end))) return 0.f;
     int around[kOffsetNeighbors + 1]; // surfels blended at a point
     float exponent[kOffsetNeighbors + 1];
     double sum = 0;
@@ -181,15 +186,6 @@ float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const 
         move = least <= most ? std::max(least, std::min(move, most)) : 0.0;
     }
     return float(move);
-}
-
-/// Whether FitSurfelOffsets leaves cluster c (members [begin, end)) in place: a narrowed blend or
-/// a member flagged in creasePoints (null: none).
-inline bool StaysAtCrease(const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels, int c,
-                          const int *begin, const int *end)
-{
-    return surfels[c].blendScale < 1 ||
-           (creasePoints && std::any_of(begin, end, [creasePoints](int i) { return (*creasePoints)[i] != 0; }));
 }
 
 /// Applies a move from SurfelOffsetOf to a surfel.
