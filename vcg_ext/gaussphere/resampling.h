@@ -54,6 +54,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -79,6 +80,7 @@
 #include "surfel_offset.h"
 #include "surfel_recipe.h"
 #include "thread_budget.h"
+#include "usable_points.h"
 
 namespace vcg {
 namespace gaussphere {
@@ -149,7 +151,9 @@ constexpr int kSurfaceBoundRounds = 16;
 struct ResamplingStats
 {
     int inputCount = 0;            ///< vertices examined (deleted ones excluded)
-    int skippedCount = 0;          ///< vertices without a usable normal or position
+    int skippedCount = 0;          ///< vertices without a usable normal or position: the sum of
+    int skippedPositions = 0;      ///< ... those whose position is not finite in float
+    int skippedNormals = 0;        ///< ... and those with a finite position and a zero or non-finite normal
     int outputCount = 0;
     int naiveCount = 0;            ///< clusters after naive sampling and rejoining
     int iterations = 0;            ///< normalization rounds run
@@ -163,7 +167,7 @@ struct ResamplingStats
     int surfaceBoundRounds = 0;    ///< projections of every point onto the blended surface
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
-    double diagonal = 0;           ///< bounding-box diagonal of the usable points
+    double diagonal = 0;           ///< bounding-box diagonal of the usable points, in the model's units
     int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
@@ -229,58 +233,42 @@ void Permute(const IndexArray &order, Vector &values)
     values.swap(permuted);
 }
 
-/// The usable vertices of `mesh` (live, finite position, finite non-zero normal) as flat
-/// float arrays with unit normals; source[i] = the vertex of point i. One parallel pass: each
-/// thread copies the usable vertices of its range of the mesh to the front of the same range of
-/// the arrays, then the ranges are closed up (nothing moves when every vertex is usable, the
-/// usual case; igea, 2 threads: 1.0 -> 0.7 ms against two passes). Returns the number of
-/// deleted vertices.
-template <class MeshType>
-int ReadUsablePoints(const MeshType &mesh, PointArray &points, PointArray &normals, IndexArray &source)
+inline std::string TooFewPointsMessage(const UsablePointCounts &counts)
 {
-    const int vertexCount = int(mesh.vert.size());
-    points.resize(vertexCount);
-    normals.resize(vertexCount);
-    source.resize(vertexCount);
-    const int ranges = std::max(1, omp_get_max_threads());
-    const auto rangeBegin = [vertexCount, ranges](int r) { return int(std::int64_t(vertexCount) * r / ranges); };
-    std::vector<int> kept(size_t(ranges), 0);
-    int deleted = 0;
-#pragma omp parallel for num_threads(ranges) schedule(static, 1) reduction(+ : deleted)
-    for (int r = 0; r < ranges; ++r) {
-        int next = rangeBegin(r);
-        for (int vi = rangeBegin(r); vi < rangeBegin(r + 1); ++vi) {
-            const auto &v = mesh.vert[vi];
-            if (v.IsD()) {
-                ++deleted;
-                continue;
-            }
-            const vcg::Point3f p = vcg::Point3f::Construct(v.cP());
-            const vcg::Point3d nrm = vcg::Point3d::Construct(v.cN());
-            const double len = nrm.Norm(); // double: very long normals stay finite
-            if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(len) && len > 1e-30))
-                continue;
-            points[next] = p;
-            normals[next] = vcg::Point3f::Construct(nrm / len);
-            source[next] = vi;
-            ++next;
-        }
-        kept[size_t(r)] = next - rangeBegin(r);
+    std::string message = "the layer has " + std::to_string(counts.usable) + " usable point(s); at least 2 are needed";
+    if (counts.badPosition > 0 || counts.badNormal > 0)
+        message += " (" + std::to_string(counts.badPosition) + " with a non-finite position, " +
+                   std::to_string(counts.badNormal) + " with a zero or non-finite normal)";
+    return message;
+}
+
+inline std::string OverflowMessage(double diagonal)
+{
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the surfels of this model do not fit in float coordinates (bounding-box diagonal %.3g): "
+                  "scale the model down", diagonal);
+    return text;
+}
+
+/// Multiplies the surfels' lengths by `scale`; false when one of them is no longer a finite float.
+inline bool ScaleSurfels(double scale, std::vector<Surfel> &surfels)
+{
+    bool finite = true;
+    const auto scaled = [scale, &finite](const vcg::Point3f &p) {
+        const vcg::Point3f q = vcg::Point3f::Construct(vcg::Point3d::Construct(p) * scale);
+        finite = finite && std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]);
+        return q;
+    };
+    for (Surfel &s : surfels) {
+        s.position = scaled(s.position);
+        s.majorAxis = scaled(s.majorAxis);
+        s.minorAxis = scaled(s.minorAxis);
+        s.fitOffset = float(double(s.fitOffset) * scale);
+        const float radius = float(vcg::Point3d::Construct(s.majorAxis).Norm()); // the mesh's radius
+        finite = finite && std::isfinite(radius) && std::isfinite(s.fitOffset) && std::isfinite(s.normal.SquaredNorm());
     }
-    int total = 0;
-    for (int r = 0; r < ranges; ++r) {
-        const int from = rangeBegin(r), count = kept[size_t(r)];
-        if (from != total) { // forward moves: the destination lies before the source
-            std::copy(points.begin() + from, points.begin() + from + count, points.begin() + total);
-            std::copy(normals.begin() + from, normals.begin() + from + count, normals.begin() + total);
-            std::copy(source.begin() + from, source.begin() + from + count, source.begin() + total);
-        }
-        total += count;
-    }
-    points.resize(total);
-    normals.resize(total);
-    source.resize(total);
-    return deleted;
+    return finite;
 }
 
 inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
@@ -292,11 +280,15 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
 
 /// Resamples the oriented point set `mesh` (vertices with normals; faces are ignored).
 /// Preconditions: param.Validate() is empty. Vertices whose normal is zero or not finite,
-/// or whose position is not finite, are skipped and counted in stats.skippedCount.
+/// or whose position is not finite, are skipped and counted (stats.skippedPositions,
+/// stats.skippedNormals). The run works at a unit scale (usable_points.h): a model scaled by a
+/// power of two gives the same surfels scaled by it, and any scale the same count.
 /// Postconditions: one surfel per cluster; every kept vertex belongs to exactly one
-/// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero.
+/// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero; every
+/// surfel value is finite.
 /// Throws std::invalid_argument for invalid parameters or fewer than two usable points,
-/// ResamplingCancelled when the callback returns false.
+/// std::overflow_error when the surfels of a model spanning nearly the float range do not fit
+/// in it, ResamplingCancelled when the callback returns false.
 template <class MeshType>
 ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &param, vcg::CallBackPos *cb = nullptr)
 {
@@ -313,18 +305,24 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     PointArray points, normals;
     IndexArray source;
     result.representative.assign(mesh.vert.size(), -1);
-    const int deleted = detail::ReadUsablePoints(mesh, points, normals, source);
-    stats.inputCount = int(mesh.vert.size()) - deleted;
-    stats.skippedCount = stats.inputCount - int(points.size());
-    const int n = int(points.size());
+    const UsablePointCounts counts = ReadUsablePoints(mesh, points, normals, source);
+    stats.inputCount = counts.Live();
+    stats.skippedPositions = counts.badPosition;
+    stats.skippedNormals = counts.badNormal;
+    stats.skippedCount = counts.badPosition + counts.badNormal;
+    const int n = counts.usable;
     if (n < 2)
-        throw std::invalid_argument("the layer has " + std::to_string(n) +
-                                    " point(s) with a usable normal; at least 2 are needed");
+        throw std::invalid_argument(detail::TooFewPointsMessage(counts));
 
+    // The run works at a unit scale (usable_points.h): `diagonal` and every length below are in
+    // its units, the surfels are scaled back at the end.
+    const double scale = UnitScaleOf(BoxDiagonal(points));
+    ScalePoints(scale, points);
     vcg::Box3f box;
     for (const auto &p : points) box.Add(p);
-    stats.diagonal = box.Diag();
-    const double weightWidth = param.weightWidth > 0 ? param.weightWidth : 0.01 * stats.diagonal;
+    const double diagonal = box.Diag();
+    stats.diagonal = diagonal / scale;
+    const double weightWidth = param.weightWidth > 0 ? param.weightWidth * scale : 0.01 * diagonal;
 
     // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
     const char *sorting = "Gaussian sphere resampling: sorting the points in space";
@@ -476,7 +474,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
         detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(points, normals, clusters, invH2);
-        const double bound = param.maxErrorFraction * stats.diagonal;
+        const double bound = param.maxErrorFraction * diagonal;
         if (param.maxErrorFraction > 0) stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
         if (param.targetCount > 0) {
             stats.splitsForTarget = refiner.SplitToCount(param.targetCount, [cb](double done) {
@@ -489,7 +487,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             // have moved a half's plane away from a member: the own planes are checked again.
             if (stats.splitsForTarget > 0) stats.splitsForErrorBound += refiner.SplitToErrorBound(bound);
             SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
-                points, normals, graph.spacing, surfelParam, bound, stats.diagonal, kSurfaceBoundRounds, refiner, clusters,
+                points, normals, graph.spacing, surfelParam, bound, diagonal, kSurfaceBoundRounds, refiner, clusters,
                 [cb](int round, double) {
                     return cb == nullptr ||
                            cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
@@ -504,7 +502,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.narrowingsForSurfaceBound = surface.narrowings;
             stats.surfaceBoundRounds = surface.rounds;
             stats.pointsAboveErrorBound = surface.pointsAbove;
-            stats.surfaceErrorMax = stats.diagonal > 0 ? surface.maxDistance / stats.diagonal : 0.0;
+            stats.surfaceErrorMax = diagonal > 0 ? surface.maxDistance / diagonal : 0.0;
             result.surfels = std::move(surface.surfels);
         }
     }
@@ -546,7 +544,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             MaxErrorExchangeParams exchangeParam;
             exchangeParam.maxRounds = param.maxErrorExchanges;
             const MaxErrorExchangeResult exchange = ExchangeForMaxError(
-                points, normals, graph, weightWidth, stats.diagonal, exchangeParam, clusters, *maker, result.surfels,
+                points, normals, graph, weightWidth, diagonal, exchangeParam, clusters, *maker, result.surfels,
                 [cb, &param](int round) {
                     return cb == nullptr ||
                            cb(90 + 9 * round / param.maxErrorExchanges, "Gaussian sphere resampling: exchanges for the largest error");
@@ -556,8 +554,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
             stats.exchangesForMaxError = exchange.exchanges;
             stats.exchangeTrials = exchange.trials;
             stats.creaseFitsForMaxError = exchange.creaseFits;
-            stats.exchangeMaxBefore = stats.diagonal > 0 ? exchange.maxBefore / stats.diagonal : 0.0;
-            stats.exchangeMaxAfter = stats.diagonal > 0 ? exchange.maxAfter / stats.diagonal : 0.0;
+            stats.exchangeMaxBefore = diagonal > 0 ? exchange.maxBefore / diagonal : 0.0;
+            stats.exchangeMaxAfter = diagonal > 0 ? exchange.maxAfter / diagonal : 0.0;
             stats.secondsExchanges = timer.Lap();
         } else {
             result.surfels = maker->MakeFitted(clusters, [cb]() {
@@ -572,8 +570,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     // Whichever path fitted them, the moves are in the surfels.
     for (const Surfel &s : result.surfels) {
         stats.surfelsFitted += s.fitOffset != 0;
-        if (stats.diagonal > 0)
-            stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / stats.diagonal);
+        if (diagonal > 0)
+            stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / diagonal);
     }
     FlatVector<double> normalError(n);
 #pragma omp parallel for schedule(static)
@@ -587,6 +585,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
         stats.normalErrorMax = std::max(stats.normalErrorMax, e);
     }
     stats.normalErrorRms = std::sqrt(sumSquares / n);
+    if (!detail::ScaleSurfels(1.0 / scale, result.surfels))
+        throw std::overflow_error(detail::OverflowMessage(stats.diagonal));
     stats.outputCount = int(result.surfels.size());
     stats.threadsUsed = threads.Fewest();
     stats.secondsSurfels = timer.Lap();

@@ -50,7 +50,7 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
     for (const Surfel &s : surfels) {
         vi->P() = Coord::Construct(s.position);
         vi->N() = Coord::Construct(s.normal);
-        if (vcg::tri::HasPerVertexRadius(mesh)) vi->R() = s.majorAxis.Norm();
+        if (vcg::tri::HasPerVertexRadius(mesh)) vi->R() = float(vcg::Point3d::Construct(s.majorAxis).Norm());
         if (vcg::tri::HasPerVertexQuality(mesh)) vi->Q() = s.memberCount;
         major[vi] = Coord::Construct(s.majorAxis);
         minor[vi] = Coord::Construct(s.minorAxis);
