@@ -154,9 +154,18 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
         error = "cannot read the header";
         return false;
     }
+    if (text.empty()) {
+        error = "the file is empty";
+        return false;
+    }
+    const std::size_t magicBytes = text.compare(0, 4, "ply\n") == 0 ? 4 : text.compare(0, 5, "ply\r\n") == 0 ? 5 : 0;
+    if (magicBytes == 0) {
+        error = "not a PLY file: it starts with " + Quote(text.substr(0, text.find('\n')));
+        return false;
+    }
     bool formatSeen = false;
-    std::size_t start = 0;
-    for (int lineNumber = 1;; ++lineNumber) {
+    std::size_t start = magicBytes;
+    for (int lineNumber = 2;; ++lineNumber) {
         const std::size_t newline = text.find('\n', start);
         const std::size_t end = newline == std::string::npos ? text.size() : newline;
         const std::string where = "header line " + std::to_string(lineNumber) + ": ";
@@ -165,8 +174,7 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
             return false;
         }
         if (newline == std::string::npos) {
-            if (lineNumber == 1 && text.empty()) error = "the file is empty";
-            else if (text.size() < fileSize) error = "no end_header within the first " + std::to_string(kMaxHeaderBytes) + " bytes";
+            if (text.size() < fileSize) error = "no end_header within the first " + std::to_string(kMaxHeaderBytes) + " bytes";
             else error = "the file ends before end_header";
             return false;
         }
@@ -176,19 +184,11 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
         for (char c : line) {
             const unsigned char u = static_cast<unsigned char>(c);
             if (u != '\t' && (u < 0x20 || u >= 0x7f)) {
-                error = where + (lineNumber == 1 ? "not a PLY file (no 'ply' line): " : "holds a non-printable byte: ") +
-                        Quote(line);
+                error = where + "holds a non-printable byte: " + Quote(line);
                 return false;
             }
         }
         const std::vector<std::string> tokens = SplitTokens(line);
-        if (lineNumber == 1) {
-            if (line != "ply") {
-                error = "not a PLY file: the first line is " + Quote(line) + ", not 'ply'";
-                return false;
-            }
-            continue;
-        }
         if (tokens.empty()) {
             error = where + "empty";
             return false;
