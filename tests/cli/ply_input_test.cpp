@@ -96,6 +96,13 @@ TEST_F(PlyInput, CountsLargerThanTheFileAreRefused)
     ExpectRefused(Header("binary_little_endian", "2", "element face 1000000\nproperty list uchar int vertex_indices\n") +
                       std::string(48 + 100, '\0'),
                   "1000000 face record(s)");
+    // A face takes at least its count and three corners, in ASCII "3 0 1 2".
+    ExpectRefused(Header("ascii", "3", "element face 20\nproperty list uchar int vertex_indices\n") + AsciiRows(3) +
+                      std::string(40, '0'),
+                  "20 face record(s) of at least 8 bytes");
+    ExpectRefused(Header("binary_little_endian", "2", "element face 10\nproperty list uchar int vertex_indices\n") +
+                      std::string(48 + 129, '\0'),
+                  "10 face record(s) of at least 13 bytes");
 }
 
 TEST_F(PlyInput, ListPropertyOnVerticesIsRefused)

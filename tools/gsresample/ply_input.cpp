@@ -320,9 +320,18 @@ bool CheckElements(const PlyHeader &header, std::string &error)
     return true;
 }
 
+/// Values a record of `element` holds at least for `property`: one for a scalar, the count
+/// for a list, and for a face's corner list also three corners (vcglib allocates a face for
+/// each record and makes a triangle of it).
+int MinimumValues(const HeaderElement &element, const HeaderProperty &property)
+{
+    const bool corners = element.name == "face" && (property.name == "vertex_indices" || property.name == "vertex_index");
+    return property.isList && corners ? 4 : 1;
+}
+
 /// The body must hold at least the smallest records the counts announce: a binary record
-/// takes its scalars' bytes (a list at least its count), an ASCII record one character and a
-/// separator per value. This keeps vcglib from allocating for records that are not there.
+/// takes its values' bytes, an ASCII record one character and a separator per value. This
+/// keeps vcglib from allocating for records that are not there.
 bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string &error)
 {
     const std::uint64_t available = fileSize - header.bodyOffset;
@@ -330,8 +339,12 @@ bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string 
     std::uint64_t needed = 0;
     for (const HeaderElement &e : header.elements) {
         std::uint64_t recordBytes = 0;
-        for (const HeaderProperty &p : e.properties)
-            recordBytes += binary ? std::uint64_t(TypeSize(p.isList ? p.countType : p.type)) : 2;
+        for (const HeaderProperty &p : e.properties) {
+            const int values = MinimumValues(e, p);
+            if (!binary) recordBytes += 2 * std::uint64_t(values);
+            else if (p.isList) recordBytes += std::uint64_t(TypeSize(p.countType) + (values - 1) * TypeSize(p.type));
+            else recordBytes += std::uint64_t(TypeSize(p.type));
+        }
         const std::uint64_t elementBytes = e.count * recordBytes;
         needed += elementBytes;
         // An ASCII file may end without a separator after its last value.
