@@ -26,8 +26,6 @@ constexpr std::size_t kMaxErrorChars = 200;
 // Quoted header text in messages.
 constexpr std::size_t kQuoteChars = 32;
 
-enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
-
 struct HeaderProperty
 {
     std::string name;
@@ -52,7 +50,7 @@ struct HeaderElement
 
 struct PlyHeader
 {
-    PlyFormat format = PlyFormat::Ascii;
+    bool binary = false; // either byte order: only the records' sizes matter here
     std::vector<HeaderElement> elements;
     std::uint64_t bodyOffset = 0;
 };
@@ -200,9 +198,8 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
                 error = where + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0', got " + Quote(line);
                 return false;
             }
-            if (tokens[1] == "ascii") header.format = PlyFormat::Ascii;
-            else if (tokens[1] == "binary_little_endian") header.format = PlyFormat::BinaryLittleEndian;
-            else if (tokens[1] == "binary_big_endian") header.format = PlyFormat::BinaryBigEndian;
+            if (tokens[1] == "ascii") header.binary = false;
+            else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") header.binary = true;
             else {
                 error = where + "unknown format " + Quote(tokens[1]);
                 return false;
@@ -335,7 +332,7 @@ int MinimumValues(const HeaderElement &element, const HeaderProperty &property)
 bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string &error)
 {
     const std::uint64_t available = fileSize - header.bodyOffset;
-    const bool binary = header.format != PlyFormat::Ascii;
+    const bool binary = header.binary;
     std::uint64_t needed = 0;
     for (const HeaderElement &e : header.elements) {
         std::uint64_t recordBytes = 0;
