@@ -70,19 +70,21 @@ printf '0 0 0 0 0 1\n0.1 0 0 0 0 1\n0 0.1 0 0 0 1\n0.1 0.1 0 0 0 1\n0.05 0.05 0 
 "$SURFEL_CHECK" five.surfel --min-count 1 --max-count 5 --require-ellipses --quality-sum 5
 echo "ok: fewer points than k"
 
-# The command-line resampler: the same inputs give one clear line and status 1, and leave no file.
-# gsresample_fails IN OUT MESSAGE [OPTION VALUE...]
+# The command-line resampler: the same inputs give one clear line and leave no file; status 1
+# for an input it cannot resample or an output it cannot write, 2 for a bad parameter.
+# gsresample_fails STATUS IN OUT MESSAGE [OPTION VALUE...]
 gsresample_fails() {
   local status=0
-  "$GSRESAMPLE" "$1" "$2" "${@:4}" >gsresample.log 2>&1 || status=$?
-  if [ "$status" != 1 ]; then echo "FAILED: gsresample $1 $2 exited $status, expected 1" >&2; cat gsresample.log >&2; exit 1; fi
-  grep -q "$3" gsresample.log || { echo "FAILED: no '$3' from gsresample $1" >&2; cat gsresample.log >&2; exit 1; }
-  if [ -e "$2" ] || [ -e "$2.part" ]; then echo "FAILED: gsresample left $2 behind" >&2; exit 1; fi
-  echo "ok: gsresample $1 -> $2: $3"
+  "$GSRESAMPLE" "$2" "$3" "${@:5}" >gsresample.log 2>&1 || status=$?
+  if [ "$status" != "$1" ]; then echo "FAILED: gsresample $2 $3 exited $status, expected $1" >&2; cat gsresample.log >&2; exit 1; fi
+  grep -q -- "$4" gsresample.log || { echo "FAILED: no '$4' from gsresample $2" >&2; cat gsresample.log >&2; exit 1; }
+  if [ -e "$3" ] || [ -e "$3.part" ]; then echo "FAILED: gsresample left $3 behind" >&2; exit 1; fi
+  echo "ok: gsresample $2 -> $3: $4"
 }
-gsresample_fails missing.ply out_missing.surfel "cannot read missing.ply"
-gsresample_fails no_normals.ply out_no_normals.surfel "no per-vertex normals"
-gsresample_fails one.ply out_one.surfel "at least 2"
-gsresample_fails "$SAMPLE_DIR/fandisk.ply" out_blend.surfel "CreaseBlendScale must be above 0" --crease-blend 0
-gsresample_fails "$SAMPLE_DIR/fandisk.ply" out_exchanges.surfel "MaxErrorExchanges must be between 0" --target 100 --exchanges -3
-gsresample_fails "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"
+gsresample_fails 1 missing.ply out_missing.surfel "cannot read missing.ply"
+gsresample_fails 1 no_normals.ply out_no_normals.surfel "no per-vertex normals"
+gsresample_fails 1 one.ply out_one.surfel "at least 2"
+gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_blend.surfel "CreaseBlendScale must be above 0" --crease-blend 0
+gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_exchanges.surfel "--exchanges: expected an integer between 0 and 100000" --target 100 --exchanges -3
+gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"
+gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.ply "cannot write no_such_folder/out.ply"

@@ -1,0 +1,246 @@
+// Reading oriented point sets from hostile and valid PLY files (tools/gsresample/ply_input.h).
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <tools/gsresample/ply_input.h>
+
+using vcg::gaussphere::OrientedPointMesh;
+
+namespace {
+
+const char kPointProperties[] = "property float x\nproperty float y\nproperty float z\n"
+                                "property float nx\nproperty float ny\nproperty float nz\n";
+
+std::string Header(const std::string &format, const std::string &vertexCount, const std::string &extra = "")
+{
+    return "ply\nformat " + format + " 1.0\nelement vertex " + vertexCount + "\n" + kPointProperties + extra +
+           "end_header\n";
+}
+
+std::string AsciiRows(int count)
+{
+    std::string rows;
+    for (int i = 0; i < count; ++i) rows += std::to_string(i) + " " + std::to_string(2 * i) + " 0.5 0 0 1\n";
+    return rows;
+}
+
+class PlyInput : public ::testing::Test
+{
+protected:
+    /// Writes `bytes` to a file of the test's own and returns its path.
+    std::string Write(const std::string &bytes)
+    {
+        const std::string path = ::testing::TempDir() + "gsresample_ply_input_" + std::to_string(::getpid()) + "_" +
+                                 std::to_string(files_.size()) + ".ply";
+        std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+        files_.push_back(path);
+        return path;
+    }
+    void TearDown() override
+    {
+        for (const std::string &path : files_) std::remove(path.c_str());
+    }
+
+    /// The file is refused with a reason holding `reason`, on one short printable line.
+    void ExpectRefused(const std::string &bytes, const std::string &reason)
+    {
+        OrientedPointMesh mesh;
+        std::string error;
+        EXPECT_FALSE(gsresample::ReadOrientedPoints(Write(bytes), mesh, error));
+        EXPECT_NE(error.find(reason), std::string::npos) << "error: " << error;
+        EXPECT_LE(error.size(), 200u) << error;
+        for (char c : error) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << "non-printable in: " << error;
+    }
+
+    std::vector<std::string> files_;
+};
+
+void AppendFloat(std::string &out, float value, bool bigEndian)
+{
+    unsigned char bytes[4];
+    std::memcpy(bytes, &value, 4);
+    if (bigEndian) std::swap(bytes[0], bytes[3]), std::swap(bytes[1], bytes[2]);
+    out.append(reinterpret_cast<const char *>(bytes), 4);
+}
+
+} // namespace
+
+TEST_F(PlyInput, NegativeCountIsRefused)
+{
+    ExpectRefused(Header("ascii", "-1") + AsciiRows(3), "count of element 'vertex' is not a non-negative integer: '-1'");
+    ExpectRefused(Header("binary_little_endian", "-5"), "not a non-negative integer");
+}
+
+TEST_F(PlyInput, CountsBeyondIntAreRefused)
+{
+    ExpectRefused(Header("ascii", "4294967295") + AsciiRows(3), "exceeds 2147483647");
+    ExpectRefused(Header("binary_little_endian", "99999999999999999999999"), "exceeds 2147483647");
+}
+
+TEST_F(PlyInput, CountsLargerThanTheFileAreRefused)
+{
+    ExpectRefused(Header("binary_little_endian", "2147483647") + std::string(240, '\0'),
+                  "2147483647 vertex record(s) of at least 24 bytes, but only 240 bytes follow");
+    ExpectRefused(Header("binary_big_endian", "11") + std::string(240, '\0'), "only 240 bytes follow");
+    ExpectRefused(Header("ascii", "2147483647") + AsciiRows(3), "but only");
+    ExpectRefused(Header("ascii", "1000") + AsciiRows(3), "1000 vertex record(s)");
+    // The faces after the vertices count too.
+    ExpectRefused(Header("binary_little_endian", "2", "element face 1000000\nproperty list uchar int vertex_indices\n") +
+                      std::string(48 + 100, '\0'),
+                  "1000000 face record(s)");
+    // A face takes at least its count and three corners, in ASCII "3 0 1 2".
+    ExpectRefused(Header("ascii", "3", "element face 20\nproperty list uchar int vertex_indices\n") + AsciiRows(3) +
+                      std::string(40, '0'),
+                  "20 face record(s) of at least 8 bytes");
+    ExpectRefused(Header("binary_little_endian", "2", "element face 10\nproperty list uchar int vertex_indices\n") +
+                      std::string(48 + 129, '\0'),
+                  "10 face record(s) of at least 13 bytes");
+}
+
+TEST_F(PlyInput, ListPropertyOnVerticesIsRefused)
+{
+    std::string body;
+    const int32_t longList = 100000;
+    for (int v = 0; v < 3; ++v) {
+        body += std::string(24, '\0');
+        body.append(reinterpret_cast<const char *>(&longList), 4);
+        body += std::string(4 * longList, '\0');
+    }
+    ExpectRefused(Header("binary_little_endian", "3", "property list int float junk\n") + body,
+                  "the vertex element has a list property 'junk'");
+}
+
+TEST_F(PlyInput, FaceListsVcglibCannotHoldAreRefused)
+{
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list int int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n",
+                  "face list 'vertex_indices' counted by 'int'");
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float color\n") +
+                      AsciiRows(3) + "3 0 1 2 0\n",
+                  "face list property 'color' is not supported");
+    ExpectRefused(Header("ascii", "3", "element tristrips 1\nproperty list int int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n",
+                  "element 'tristrips' is not supported");
+}
+
+TEST_F(PlyInput, MissingPropertiesAreRefused)
+{
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                  "0 0 0\n1 0 0\n0 1 0\n",
+                  "no per-vertex normals (nx ny nz)");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float z\nproperty float nx\n"
+                  "property float ny\nproperty float nz\nend_header\n0 0 0 0 1\n",
+                  "no 'y' property");
+    ExpectRefused("ply\nformat ascii 1.0\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n",
+                  "no vertex element");
+    std::string byteNormal = Header("ascii", "1");
+    byteNormal.replace(byteNormal.find("float nx"), 5, "uchar");
+    ExpectRefused(byteNormal + "0 0 0 0 0 1\n", "float or all be double");
+}
+
+TEST_F(PlyInput, TruncatedBodyIsRefused)
+{
+    // Long enough for the counts, short of the last row: vcglib's reader finds the end.
+    ExpectRefused(Header("ascii", "3") + "0.000000001 0.000000001 0.000000001 0 0 1\n1 0 0 0 0 1\n0 1",
+                  "vcglib's PLY reader failed");
+    ExpectRefused(Header("binary_little_endian", "3") + std::string(3 * 24 - 1, '\0'), "but only 71 bytes follow");
+}
+
+TEST_F(PlyInput, HeaderWithoutEndIsRefused)
+{
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n", "the file ends before end_header");
+    std::string endless = "ply\nformat ascii 1.0\n";
+    while (endless.size() < 70000) endless += "comment filler filler filler filler\n";
+    ExpectRefused(endless, "no end_header within the first 65536 bytes");
+    ExpectRefused("", "the file is empty");
+}
+
+TEST_F(PlyInput, MegabyteHeaderLineIsRefused)
+{
+    ExpectRefused("ply\nformat ascii 1.0\ncomment " + std::string(1 << 20, 'a') + "\n" + Header("ascii", "3").substr(21) +
+                      AsciiRows(3),
+                  "header line 3: longer than 500 bytes");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex " + std::string(1 << 20, '9') + "\n", "longer than 500 bytes");
+}
+
+TEST_F(PlyInput, MalformedHeadersAreRefusedWithQuotedEscapedText)
+{
+    ExpectRefused("PK\x03\x04" + std::string(1000, 'z'), "not a PLY file: it starts with 'PK\\x03\\x04zzz");
+    ExpectRefused("ply\nformat binary_middle_endian 1.0\nend_header\n", "unknown format 'binary_middle_endian'");
+    ExpectRefused("ply\nformat ascii 2.0\nend_header\n", "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty floaty x\nend_header\n", "unknown type 'floaty'");
+    ExpectRefused("ply\nformat ascii 1.0\nproperty float x\nend_header\n", "a property before any element");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float x\nend_header\n0 0\n",
+                  "a second property 'x'");
+    ExpectRefused(Header("ascii", "3", "element vertex 3\n" + std::string(kPointProperties)) + AsciiRows(6),
+                  "a second element 'vertex'");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vert\x01" "ex 3\nend_header\n", "non-printable byte: 'element vert\\x01ex 3'");
+    ExpectRefused("ply\nformat ascii 1.0\nbogus " + std::string(400, 'b') + "\nend_header\n", "unexpected 'bogus bbbb");
+    ExpectRefused("ply\nformat ascii 1.0\nelement empty 5\n" + std::string(kPointProperties) + "end_header\n",
+                  "no vertex element");
+    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 1\n" + std::string(kPointProperties) + "element empty 5\nend_header\n"
+                  "0 0 0 0 0 1\n",
+                  "element 'empty' has records but no properties");
+}
+
+TEST_F(PlyInput, MissingFileIsRefused)
+{
+    OrientedPointMesh mesh;
+    std::string error;
+    EXPECT_FALSE(gsresample::ReadOrientedPoints(::testing::TempDir() + "no_such_file.ply", mesh, error));
+    EXPECT_NE(error.find("cannot open the file: No such file or directory"), std::string::npos) << error;
+    EXPECT_FALSE(gsresample::ReadOrientedPoints(::testing::TempDir(), mesh, error));
+    EXPECT_EQ(error, "not a regular file");
+}
+
+TEST_F(PlyInput, AsciiLoads)
+{
+    OrientedPointMesh mesh;
+    std::string error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(Write("ply\r\nformat ascii 1.0\r\ncomment made by a test\r\n" +
+                                                     Header("ascii", "4").substr(21) + AsciiRows(4)),
+                                               mesh, error))
+        << error;
+    ASSERT_EQ(mesh.vn, 4);
+    EXPECT_EQ(mesh.vert[3].P(), vcg::Point3f(3, 6, 0.5f));
+    EXPECT_EQ(mesh.vert[3].N(), vcg::Point3f(0, 0, 1));
+}
+
+TEST_F(PlyInput, BinaryBigEndianLoads)
+{
+    std::string body;
+    for (int i = 0; i < 5; ++i)
+        for (float value : {float(i), -1.5f * i, 0.25f, 0.f, 1.f, 0.f}) AppendFloat(body, value, true);
+    OrientedPointMesh mesh;
+    std::string error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(Write(Header("binary_big_endian", "5") + body), mesh, error)) << error;
+    ASSERT_EQ(mesh.vn, 5);
+    EXPECT_EQ(mesh.vert[4].P(), vcg::Point3f(4, -6, 0.25f));
+    EXPECT_EQ(mesh.vert[4].N(), vcg::Point3f(0, 1, 0));
+}
+
+TEST_F(PlyInput, BinaryLittleEndianWithFacesAndExtraPropertiesLoads)
+{
+    std::string body;
+    for (int i = 0; i < 3; ++i) {
+        for (float value : {float(i), 0.f, 0.f, 0.f, 0.f, -1.f}) AppendFloat(body, value, false);
+        body += char(7); // quality-like extra uchar
+    }
+    body += std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00", 13);
+    OrientedPointMesh mesh;
+    std::string error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(
+        Write(Header("binary_little_endian", "3", "property uchar extra\nelement face 1\nproperty list uchar int vertex_indices\n") +
+              body),
+        mesh, error))
+        << error;
+    ASSERT_EQ(mesh.vn, 3);
+    EXPECT_EQ(mesh.vert[2].P(), vcg::Point3f(2, 0, 0));
+    EXPECT_EQ(mesh.vert[2].N(), vcg::Point3f(0, 0, -1));
+}

@@ -1,0 +1,412 @@
+#include "ply_input.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <new>
+#include <vector>
+
+#include <wrap/io_trimesh/import_ply.h>
+
+#include "strict_parse.h"
+
+namespace gsresample {
+namespace {
+
+constexpr std::size_t kMaxHeaderBytes = 65536;
+// vcglib reads header lines with fgets into 512 bytes and would take the rest of a longer
+// line for a line of its own.
+constexpr std::size_t kMaxHeaderLineBytes = 500;
+constexpr std::size_t kMaxErrorChars = 200;
+// Quoted header text in messages.
+constexpr std::size_t kQuoteChars = 32;
+
+struct HeaderProperty
+{
+    std::string name;
+    std::string type;      // items' type for a list
+    bool isList = false;
+    std::string countType; // lists only
+};
+
+struct HeaderElement
+{
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<HeaderProperty> properties;
+
+    const HeaderProperty *Find(const std::string &property) const
+    {
+        for (const HeaderProperty &p : properties)
+            if (p.name == property) return &p;
+        return nullptr;
+    }
+};
+
+struct PlyHeader
+{
+    bool binary = false; // either byte order: only the records' sizes matter here
+    std::vector<HeaderElement> elements;
+    std::uint64_t bodyOffset = 0;
+};
+
+std::string Quote(const std::string &text) { return "'" + Printable(text, kQuoteChars) + "'"; }
+
+/// Bytes of one value of a PLY scalar type (both spellings), 0 for an unknown name.
+int TypeSize(const std::string &type)
+{
+    static const char *const names[][2] = {{"char", "int8"},   {"uchar", "uint8"},   {"short", "int16"},
+                                           {"ushort", "uint16"}, {"int", "int32"},     {"uint", "uint32"},
+                                           {"float", "float32"}, {"double", "float64"}};
+    static const int sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    for (int i = 0; i < 8; ++i)
+        if (type == names[i][0] || type == names[i][1]) return sizes[i];
+    return 0;
+}
+
+bool IsFloatingType(const std::string &type)
+{
+    return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
+std::vector<std::string> SplitTokens(const std::string &line)
+{
+    std::vector<std::string> tokens;
+    std::size_t start = 0;
+    while (start < line.size()) {
+        const std::size_t begin = line.find_first_not_of(" \t", start);
+        if (begin == std::string::npos) break;
+        std::size_t end = line.find_first_of(" \t", begin);
+        if (end == std::string::npos) end = line.size();
+        tokens.push_back(line.substr(begin, end - begin));
+        start = end;
+    }
+    return tokens;
+}
+
+/// An element count: decimal digits only, at most INT_MAX (vcglib keeps counts in an int).
+bool ParseCount(const std::string &element, const std::string &text, std::uint64_t &count, std::string &error)
+{
+    bool digits = !text.empty();
+    for (char c : text) digits = digits && c >= '0' && c <= '9';
+    if (!digits) {
+        error = "the count of element " + Quote(element) + " is not a non-negative integer: " + Quote(text);
+        return false;
+    }
+    std::uint64_t value = 0;
+    for (char c : text) {
+        value = value * 10 + std::uint64_t(c - '0');
+        if (value > std::uint64_t(INT_MAX)) {
+            error = "the count of element " + Quote(element) + " exceeds " + std::to_string(INT_MAX) + ": " + Quote(text);
+            return false;
+        }
+    }
+    count = value;
+    return true;
+}
+
+bool ParseProperty(const std::vector<std::string> &tokens, HeaderProperty &property, std::string &error)
+{
+    if (tokens.size() >= 2 && tokens[1] == "list") {
+        if (tokens.size() != 5) {
+            error = "a list property needs 'property list COUNT_TYPE ITEM_TYPE NAME'";
+            return false;
+        }
+        property.isList = true;
+        property.countType = tokens[2];
+        property.type = tokens[3];
+        property.name = tokens[4];
+        if (TypeSize(property.countType) == 0) {
+            error = "unknown type " + Quote(property.countType) + " for the count of list " + Quote(property.name);
+            return false;
+        }
+        if (IsFloatingType(property.countType)) {
+            error = "the count of list " + Quote(property.name) + " has a floating-point type";
+            return false;
+        }
+    } else {
+        if (tokens.size() != 3) {
+            error = "a property needs 'property TYPE NAME'";
+            return false;
+        }
+        property.type = tokens[1];
+        property.name = tokens[2];
+    }
+    if (TypeSize(property.type) == 0) {
+        error = "unknown type " + Quote(property.type) + " of property " + Quote(property.name);
+        return false;
+    }
+    return true;
+}
+
+/// Reads the header from the first kMaxHeaderBytes of the file, line by line as vcglib will.
+bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std::string &error)
+{
+    std::string text(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
+    if (!in.read(&text[0], std::streamsize(text.size()))) {
+        error = "cannot read the header";
+        return false;
+    }
+    if (text.empty()) {
+        error = "the file is empty";
+        return false;
+    }
+    const std::size_t magicBytes = text.compare(0, 4, "ply\n") == 0 ? 4 : text.compare(0, 5, "ply\r\n") == 0 ? 5 : 0;
+    if (magicBytes == 0) {
+        error = "not a PLY file: it starts with " + Quote(text.substr(0, text.find('\n')));
+        return false;
+    }
+    bool formatSeen = false;
+    std::size_t start = magicBytes;
+    for (int lineNumber = 2;; ++lineNumber) {
+        const std::size_t newline = text.find('\n', start);
+        const std::size_t end = newline == std::string::npos ? text.size() : newline;
+        const std::string where = "header line " + std::to_string(lineNumber) + ": ";
+        if (end - start > kMaxHeaderLineBytes) {
+            error = where + "longer than " + std::to_string(kMaxHeaderLineBytes) + " bytes";
+            return false;
+        }
+        if (newline == std::string::npos) {
+            if (text.size() < fileSize) error = "no end_header within the first " + std::to_string(kMaxHeaderBytes) + " bytes";
+            else error = "the file ends before end_header";
+            return false;
+        }
+        std::string line = text.substr(start, end - start);
+        start = newline + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        for (char c : line) {
+            const unsigned char u = static_cast<unsigned char>(c);
+            if (u != '\t' && (u < 0x20 || u >= 0x7f)) {
+                error = where + "holds a non-printable byte: " + Quote(line);
+                return false;
+            }
+        }
+        const std::vector<std::string> tokens = SplitTokens(line);
+        if (tokens.empty()) {
+            error = where + "empty";
+            return false;
+        }
+        const std::string &keyword = tokens[0];
+        if (keyword == "comment") continue;
+        if (!formatSeen) {
+            if (keyword != "format" || tokens.size() != 3 || tokens[2] != "1.0") {
+                error = where + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0', got " + Quote(line);
+                return false;
+            }
+            if (tokens[1] == "ascii") header.binary = false;
+            else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") header.binary = true;
+            else {
+                error = where + "unknown format " + Quote(tokens[1]);
+                return false;
+            }
+            formatSeen = true;
+        } else if (keyword == "obj_info") {
+            continue;
+        } else if (keyword == "element") {
+            if (tokens.size() != 3) {
+                error = where + "expected 'element NAME COUNT', got " + Quote(line);
+                return false;
+            }
+            for (const HeaderElement &e : header.elements) {
+                if (e.name == tokens[1]) {
+                    error = where + "a second element " + Quote(tokens[1]);
+                    return false;
+                }
+            }
+            HeaderElement element;
+            element.name = tokens[1];
+            if (!ParseCount(element.name, tokens[2], element.count, error)) {
+                error = where + error;
+                return false;
+            }
+            header.elements.push_back(element);
+        } else if (keyword == "property") {
+            if (header.elements.empty()) {
+                error = where + "a property before any element";
+                return false;
+            }
+            HeaderProperty property;
+            if (!ParseProperty(tokens, property, error)) {
+                error = where + error;
+                return false;
+            }
+            HeaderElement &element = header.elements.back();
+            if (element.Find(property.name)) {
+                error = where + "a second property " + Quote(property.name) + " in element " + Quote(element.name);
+                return false;
+            }
+            element.properties.push_back(property);
+        } else if (keyword == "end_header" && tokens.size() == 1) {
+            header.bodyOffset = start;
+            return true;
+        } else {
+            error = where + "unexpected " + Quote(line);
+            return false;
+        }
+    }
+}
+
+/// What this reader needs and what vcglib's ImporterPLY handles safely: it reads lists into
+/// fixed-size buffers (face corners into 512 ints, face colours into 32 floats, range grid
+/// points into 5 ints) and tristrips into a buffer sized by each record's count.
+bool CheckElements(const PlyHeader &header, std::string &error)
+{
+    const HeaderElement *vertex = nullptr;
+    for (const HeaderElement &e : header.elements) {
+        if (e.name == "vertex") vertex = &e;
+        if (e.count > 0 && e.properties.empty()) {
+            error = "element " + Quote(e.name) + " has records but no properties";
+            return false;
+        }
+        if (e.name == "tristrips" || e.name == "range_grid") {
+            error = "element " + Quote(e.name) + " is not supported";
+            return false;
+        }
+        if (e.name != "face") continue;
+        for (const HeaderProperty &p : e.properties) {
+            if (!p.isList) continue;
+            if (p.name == "vertex_indices" || p.name == "vertex_index") {
+                if (TypeSize(p.countType) != 1) {
+                    error = "face list " + Quote(p.name) + " counted by " + Quote(p.countType) +
+                            ": only char or uchar counts (at most 255 corners) are supported";
+                    return false;
+                }
+            } else if (p.name == "color" || p.name == "texcoord") {
+                error = "face list property " + Quote(p.name) + " is not supported";
+                return false;
+            }
+        }
+    }
+    if (!vertex) {
+        error = "the file has no vertex element";
+        return false;
+    }
+    for (const HeaderProperty &p : vertex->properties) {
+        if (p.isList) {
+            error = "the vertex element has a list property " + Quote(p.name) + "; lists on vertices are not supported";
+            return false;
+        }
+    }
+    for (const char *name : {"x", "y", "z"}) {
+        const HeaderProperty *p = vertex->Find(name);
+        if (!p) {
+            error = std::string("the vertex element has no '") + name + "' property (x y z nx ny nz are needed)";
+            return false;
+        }
+        if (!IsFloatingType(p->type)) {
+            error = std::string("vertex property '") + name + "' is " + Quote(p->type) + "; float or double is needed";
+            return false;
+        }
+    }
+    const HeaderProperty *nx = vertex->Find("nx"), *ny = vertex->Find("ny"), *nz = vertex->Find("nz");
+    if (!nx || !ny || !nz) {
+        error = "no per-vertex normals (nx ny nz); compute them first, e.g. with MeshLab's Compute normals for point sets";
+        return false;
+    }
+    const int normalSize = TypeSize(nx->type);
+    if (!IsFloatingType(nx->type) || TypeSize(ny->type) != normalSize || TypeSize(nz->type) != normalSize ||
+        !IsFloatingType(ny->type) || !IsFloatingType(nz->type)) {
+        error = "the normals nx ny nz must all be float or all be double";
+        return false;
+    }
+    return true;
+}
+
+/// Values a record of `element` holds at least for `property`: one for a scalar, the count
+/// for a list, and for a face's corner list also three corners (vcglib allocates a face for
+/// each record and makes a triangle of it).
+int MinimumValues(const HeaderElement &element, const HeaderProperty &property)
+{
+    const bool corners = element.name == "face" && (property.name == "vertex_indices" || property.name == "vertex_index");
+    return property.isList && corners ? 4 : 1;
+}
+
+/// The body must hold at least the smallest records the counts announce: a binary record
+/// takes its values' bytes, an ASCII record one character and a separator per value. This
+/// keeps vcglib from allocating for records that are not there.
+bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string &error)
+{
+    const std::uint64_t available = fileSize - header.bodyOffset;
+    const bool binary = header.binary;
+    std::uint64_t needed = 0;
+    for (const HeaderElement &e : header.elements) {
+        std::uint64_t recordBytes = 0;
+        for (const HeaderProperty &p : e.properties) {
+            const int values = MinimumValues(e, p);
+            if (!binary) recordBytes += 2 * std::uint64_t(values);
+            else if (p.isList) recordBytes += std::uint64_t(TypeSize(p.countType) + (values - 1) * TypeSize(p.type));
+            else recordBytes += std::uint64_t(TypeSize(p.type));
+        }
+        const std::uint64_t elementBytes = e.count * recordBytes;
+        needed += elementBytes;
+        // An ASCII file may end without a separator after its last value.
+        const std::uint64_t neededNow = binary || needed == 0 ? needed : needed - 1;
+        if (neededNow > available) {
+            error = "the header announces " + std::to_string(e.count) + " " + Printable(e.name, kQuoteChars) +
+                    " record(s) of at least " + std::to_string(recordBytes) + " bytes, but only " +
+                    std::to_string(available) + " bytes follow the header" +
+                    (needed > elementBytes ? " and the elements before it" : "");
+            return false;
+        }
+    }
+    return true;
+}
+
+std::string Bounded(const std::string &message) { return Printable(message, kMaxErrorChars - 3); }
+
+} // namespace
+
+bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error)
+{
+    typedef vcg::tri::io::ImporterPLY<vcg::gaussphere::OrientedPointMesh> Importer;
+    struct stat info;
+    if (::stat(path.c_str(), &info) != 0) {
+        error = Bounded(std::string("cannot open the file: ") + std::strerror(errno));
+        return false;
+    }
+    if (!S_ISREG(info.st_mode)) {
+        error = "not a regular file";
+        return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = Bounded(std::string("cannot open the file: ") + std::strerror(errno));
+        return false;
+    }
+    PlyHeader header;
+    const std::uint64_t fileSize = std::uint64_t(info.st_size);
+    if (!ReadHeader(in, fileSize, header, error) || !CheckElements(header, error) ||
+        !CheckBodySize(header, fileSize, error)) {
+        error = Bounded(error);
+        return false;
+    }
+    in.close();
+
+    int mask = 0;
+    int status = 0;
+    try {
+        status = Importer::Open(mesh, path.c_str(), mask);
+    } catch (const std::bad_alloc &) {
+        error = "not enough memory for the points";
+        return false;
+    } catch (const std::exception &e) {
+        error = Bounded(std::string("vcglib's PLY reader failed: ") + e.what());
+        return false;
+    }
+    if (Importer::ErrorCritical(status)) {
+        error = Bounded(std::string("vcglib's PLY reader failed: ") + Importer::ErrorMsg(status));
+        return false;
+    }
+    if (!(mask & vcg::tri::io::Mask::IOM_VERTNORMAL)) {
+        error = "vcglib's PLY reader found no per-vertex normals";
+        return false;
+    }
+    return true;
+}
+
+} // namespace gsresample
