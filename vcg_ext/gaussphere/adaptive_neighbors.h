@@ -94,7 +94,7 @@ int PartitionByCone(const PointArray &normals, int i, float minDot, const int *o
 
 /// Orders each point's slots canonically: the neighbours q with |n_p - n_q| <= chord
 /// first, then the others, each group by increasing (distance, index); sets count. The
-/// result depends only on the chord, not on earlier calls.
+/// result depends only on the chord, not on the order of the calls.
 inline void RestrictToCone(const PointArray &points, const PointArray &normals,
                            double chord, NeighborGraph &g)
 {

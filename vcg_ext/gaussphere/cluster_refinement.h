@@ -178,12 +178,10 @@ private:
     std::vector<std::pair<int, int>> range_;
 };
 
-/// Weights of MergeToCount's positional terms against its normal term, measured with bench/
-/// at 5 % and 10 % of 16 models (where most clusters come from merging), against CGAL's
-/// hierarchy clustering at the same counts: with the spread alone (weight 1, no plane term) our
-/// Delta*max was lower on 10/16 and 14/16 models, Delta*RMS on 11/16 and 13/16; with these
-/// weights 15/16 and 16/16, 14/16 and 12/16; the L2,1 errors stay lower on 16/16. Plane weights
-/// 4 and 64, spread weights 0.03 and 0.25 did no better.
+/// Weights of MergeToCount's positional terms against its normal term: the height above the
+/// merged plane weighs most, so that a merge across a bend pays for the edge it rounds, and the
+/// spread a little, so that merged surfels stay compact. Tuned with bench/ at 5 % and 10 % of its
+/// models, where most clusters come from merging.
 constexpr double kMergePlaneWeight = 16.0;
 constexpr double kMergeSpreadWeight = 0.1;
 
@@ -227,8 +225,8 @@ public:
         merged.Add(B);
         const double ward = A.size * B.size / (A.size + B.size);
         // May be negative: each part's error is taken along its own mean normal, its surfel's,
-        // and a merged normal that fits both parts better lowers the surfels' height error.
-        // Clamping it at 0 was measured: Delta*max lower than the hierarchy's on 2 models fewer.
+        // and a merged normal that fits both parts better lowers the surfels' height error. Not
+        // clamped at 0: a merge that straightens two surfels is the one to make first.
         const double addedHeight = merged.PlaneError() - A.PlaneError() - B.PlaneError();
         return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
                        kMergeSpreadWeight * (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2_) +
@@ -327,7 +325,7 @@ struct MergePair
 };
 
 /// The pairs (a, b), a < b, with b in adjacent[a] (ClusterAdjacency: a member of a has a neighbour
-/// in b; the k-nearest graph is not symmetric, and as before, a link seen only from b's members
+/// in b; the k-nearest graph is not symmetric, and here too a link seen only from b's members
 /// is not listed), as entries makeEntry(cost, a, b) with their costs by `model`, ordered by a,
 /// then b; computed in parallel. The buffer has room for `spare` times as many entries more
 /// (MergeToCount's queue grows in place).
@@ -419,8 +417,8 @@ inline int MergeToCount(MergeBasis &basis, int target, Clustering &clusters,
         return root(c.a) != c.a || root(c.b) != c.b || changed[c.a] > c.when || changed[c.b] > c.when;
     };
     // The heap in one buffer, a quarter larger than the pairs: when full, stale entries are dropped
-    // (the order of the valid ones is a total order: the same merges) before it grows. A doubling
-    // vector held 3 times the pairs at the peak, 36 B a point at 20 million points.
+    // (the order of the valid ones is a total order: the same merges) before it grows, so that the
+    // queue stays near the pairs' size (a doubling vector can hold 3 times as many at its peak).
     std::vector<Candidate> heap = LinkedPairs<Candidate>(
         model, adjacent, [](double cost, int a, int b) { return Candidate{cost, a, b, 0}; }, 0.25);
     std::make_heap(heap.begin(), heap.end(), later);

@@ -141,7 +141,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                 if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
                 const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
                 // Without branches: every neighbour is written past the end and the end moves
-                // past it only if it joins (whether one does is unpredictable; igea: 11 -> 7 ms).
+                // past it only if it joins (whether one does is unpredictable: a branch mispredicts).
                 // The joined are labelled after the scan (neighbours are distinct: the same
                 // joins), and their neighbour lists, visited soon, fetched ahead. A neighbour of
                 // another thread's triangle has its label read too, though never used: labels

@@ -152,8 +152,9 @@ public:
     }
 
     /// Whether grids whose occupied cells span at most kMaxDenseCells cells look cells up in a
-    /// dense array (the default; igea, one thread: grid and neighbour search 36 -> 30 ms) rather
-    /// than in the hash table that larger grids use. Same results either way; false tests the table.
+    /// dense array (the default: one load per lookup, where most of the table's probes miss on a
+    /// surface) rather than in the hash table that larger grids use. Same results either way;
+    /// false tests the table.
     static bool &DenseCellTables()
     {
         static bool on = true;
@@ -308,8 +309,8 @@ private:
 
     /// Sorts (key, index) pairs by key, keeping the given order among equal keys: an LSD radix
     /// sort over the keys' significant bits (cells per axis rarely need more than 10 bits, so
-    /// three or four passes). Measured against the parallel comparison sort it replaced: 20 M
-    /// points ~3 s -> ~0.5 s, without a progress report in between.
+    /// three or four passes): linear in the points, about 0.5 s at 20 M points, short enough
+    /// between two progress reports.
     static void SortByKeyStable(FlatVector<std::pair<std::uint64_t, int>> &keyed)
     {
         constexpr int kDigitBits = 11;
@@ -330,8 +331,8 @@ private:
 
     static constexpr int kMaxRing = 3;
     // Both costs grow linearly with N: a scan ~2.5 ns per point and query, the kd-tree's build
-    // ~250 ns per point (20 M densified dragon points: 30 isolated ones took 5 s with the tree,
-    // without a progress report in between), so scanning pays up to about 100 queries.
+    // ~250 ns per point (at 20 M points a tree for a few dozen isolated ones costs seconds without
+    // a progress report), so scanning pays up to about 100 queries.
     static constexpr size_t kMaxScannedQueries = 64;
     static constexpr float kGuessGrowth = 1.3f; // measured: 1.2-1.4 best on scans
     static constexpr int kMaxRanked = 96;       // candidates ranked by counting; beyond, selected
@@ -579,8 +580,8 @@ private:
     /// The compaction of SelectNearest, eight candidates at a time: the lanes inside the bound
     /// are moved to the front by a permutation looked up from their mask. Same result as the
     /// scalar loop; used when the CPU has AVX2 (checked at run time, so the build stays generic).
-    /// Measured on the igea (1 thread): neighbour stage 0.103 -> 0.087 s. Handles whole groups
-    /// of eight and returns where it stopped.
+    /// It spares the scalar loop's unpredictable branch per candidate. Handles whole groups of
+    /// eight and returns where it stopped.
     __attribute__((target("avx2"))) static int CompactAvx2(const float *d2, const int *id, int m, int i,
                                                          float bound, float *near, int *nearId, int &inside)
     {
@@ -641,10 +642,9 @@ private:
     static bool RanksDistinct(int k, int ranked, int rankSum) { return ranked == k && rankSum == k * (k - 1) / 2; }
 
 #ifdef GAUSSPHERE_X86_DISPATCH
-    /// RankCandidates with eight lanes of AVX2. Measured on the igea (1 thread), neighbour stage:
-    /// 0.065 s with a count per candidate, 0.056 s with these lanes, 0.040 s once the ranks were
-    /// stored without a branch; then 5 % fewer instructions in the whole run (callgrind) with the
-    /// count and sum checks instead of counting equal distances.
+    /// RankCandidates with eight lanes of AVX2: eight candidates are counted at once, and the
+    /// ranks are stored without a branch (ranks of k and beyond land in a scratch slot); ties are
+    /// detected by the count and sum checks, which cost less than counting equal distances.
     __attribute__((target("avx2"))) static bool RankAvx2(const float *near, const int *nearId, int inside, int k,
                                                        std::uint64_t *nearest)
     {
@@ -829,7 +829,8 @@ private:
     std::vector<std::uint64_t> cellKey_;
     std::vector<int> table_;
     // 8 MB at most: the dragon's 437,645 points (1.2 M entries, 51,000 occupied cells) are under
-    // it, a million surface points (~2.7 M) are not, so the memory per point at scale is unchanged.
+    // it, a million surface points (~2.7 M) are not, so at scale the hash table's memory per
+    // point applies.
     static constexpr std::int64_t kMaxDenseCells = std::int64_t(1) << 21;
     Cell denseLow_{0, 0, 0}, denseSize_{0, 0, 0};
     IndexArray dense_; // a FlatVector: freeing a heap block this large would raise glibc's mmap threshold

@@ -7,8 +7,8 @@
 // propagated one), so rejoining never drags a cluster's normal along a chain of points.
 // Passes repeat until no singleton moves: a singleton whose neighbours were all singletons
 // may find a cluster once they have joined one.
-// Within a pass all decisions are taken against the clustering as it was before the
-// pass, so the result does not depend on the processing order or the thread count; a
+// Within a pass all decisions are taken against the clustering as it stands at the start
+// of the pass, so the result does not depend on the processing order or the thread count; a
 // singleton only joins clusters of two or more points, so two singletons never swap
 // into each other. A singleton with no such cluster around stays a cluster of its own.
 #ifndef VCG_EXT_GAUSSPHERE_SINGLETON_REJOINING_H
@@ -26,9 +26,9 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Up to this many singletons (or clusters to re-sum) a pass runs on the calling thread alone.
-/// (Igea, 2 threads: the ~3,000 singletons left after each normalization round took 0.35 ms
-/// a pass on one thread, 0.2 ms on two.)
+/// Up to this many singletons (or clusters to re-sum) a pass runs on the calling thread alone:
+/// below it, starting the threads costs more than they save. (The few thousand singletons a
+/// normalization round leaves on the igea take a fraction of a millisecond a pass.)
 constexpr size_t kRejoinParallelMin = 512;
 /// How many singletons ahead a pass fetches the next one's data.
 constexpr int kRejoinPrefetchAhead = 8;
@@ -66,13 +66,13 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     FlatVector<char> changed(count, 0);      // ... flagged for the next one
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
-        // Decisions against the clustering as it was before the pass. Later passes have few
-        // singletons left, for which threads would cost more than they save.
+        // Decisions against the clustering as it stands at the start of the pass. Later passes
+        // have few singletons left, for which threads would cost more than they save.
 #pragma omp parallel for schedule(dynamic, 256) if (singletons.size() > kRejoinParallelMin)
         for (int s = 0; s < int(singletons.size()); ++s) {
             const int i = singletons[s], own = label[i];
             // Singletons lie scattered: fetch a later one's neighbour list and label ahead
-            // (igea, 2 threads: the decisions 2.6 -> 2.1 ms a run).
+            // (the decisions are bound by memory latency, not arithmetic).
             if (s + kRejoinPrefetchAhead < int(singletons.size())) {
                 __builtin_prefetch(graph.begin(singletons[s + kRejoinPrefetchAhead]));
                 __builtin_prefetch(label.data() + singletons[s + kRejoinPrefetchAhead]);
