@@ -11,18 +11,14 @@
 //
 // Which surfels: those of the clusters holding a crease point or one of its k neighbours, one-point
 // clusters excepted. A one-point cluster at a crease stands for the edge itself (its normal is the
-// input's, averaged across the edge): narrowing it too let the faces' surfels take the edge over
-// (sharp_sphere Delta*max up by 13 % at 0.85, 56 % at 0.5). Measured with bench/ (16 models at
-// level 8 and at CGAL hierarchy's counts, and 8 CAD parts at 5-30 % of their points; scales 0.5 to
-// 0.9), 0.65 left the fewest losses against the peers: at level 8 Delta*RMS fell on 15 of 16 models
-// (CAD parts 13 to 24 %, rocker_arm 5 %, scans 1 to 11 %; the dragon +0.4 %) and Delta*max on 15,
-// the dragon's held (trim_star 0.0178 -> 0.0120, sharp_sphere 0.0221 -> 0.0197); at the targets
-// the losses fell from 42 to 13.
-// Wider scales (0.7 to 0.8) left the blended L2,1 p99.9 on twirl above the hierarchy's at its
-// count, narrower ones (0.5, 0.6) raised Delta*max again on CAD parts at low counts, where the
-// blend follows each surfel's plane out to its rim. Narrowing only the clusters that hold a crease
-// point, or sparing the clusters made only of crease points, left more losses (17 and 27 at 0.7,
-// against 13).
+// input's, averaged across the edge): narrowed too, it would let the faces' surfels take the edge
+// over. The neighbours' clusters are narrowed as well as the crease points' own, and so are the
+// clusters made only of crease points: every surfel whose weight reaches across the edge.
+//
+// The scale, 0.65 by default (ResamplingParams::creaseBlendScale), balances two faults: a wider
+// blend still rounds the edge, a narrower one follows each surfel's plane out to its rim, which
+// raises the largest error on CAD parts at low counts, where the surfels are large; 0.65 is where
+// bench/'s comparisons with the peers show the fewest losses.
 #ifndef VCG_EXT_GAUSSPHERE_CREASE_BLEND_H
 #define VCG_EXT_GAUSSPHERE_CREASE_BLEND_H
 

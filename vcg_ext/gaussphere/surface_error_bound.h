@@ -15,10 +15,9 @@
 // surfels nearest to a point still beyond the bound has the width of its weight halved
 // (Surfel::blendScale), down to kMinBlendScale, and the blend there follows the nearest surfel's
 // plane instead of averaging across the crease. All of them, not only those across the crease:
-// narrowing only those let the wider ones farther away take over, and raised Δ*max (fandisk at
-// 0.002: 0.010 -> 0.019). Only the weight narrows: the ellipse keeps its size, since narrowing the
-// ellipses themselves left gaps along every crease of a splat rendering (fandisk at 0.001:
-// coverage of the silhouette 62 % in the worst view, against 99.9 % at level 8).
+// with only those narrowed, the wider surfels farther away take over the blend. Only the weight
+// narrows: the ellipse keeps its size, since narrower ellipses leave gaps along every crease of
+// a splat rendering.
 // The rounds end when no point is beyond the bound, when nothing is left to split or narrow, or
 // after maxRounds; the points still beyond it are counted in the result, so that the caller can
 // report them.
@@ -40,8 +39,8 @@ namespace gaussphere {
 
 /// The narrowest a one-point surfel's blend gets for the error bound (Surfel::blendScale): its
 /// Gaussian weight then falls to e^-50 one sample spacing away (with the default coverage margin),
-/// so the blend follows the nearest surfel (measured: 1/2 met ε = 0.002 on 6 of 16 models of
-/// bench/, 1/8 on all 16).
+/// so the blend follows the nearest surfel: narrow enough to meet ε = 0.002 on every model of
+/// bench/.
 constexpr float kMinBlendScale = 0.125f;
 
 /// The blended surface of the surfels `which[0, count)` of `surfels` (null: the first count) as

@@ -4,10 +4,9 @@
 //   centroid lies inside the surface by about half its sagitta, and every blend of the
 //   surfels inherits that bias; the surfel is moved along its normal by the Gaussian-weighted
 //   mean height of the members around the centroid (width 0.3 of the cluster's radius, so
-//   the nearest members dominate; clusters of 6 points or more). Measured with bench/ at 5 %
-//   of the input: Δ*RMS -4 to -10 % (bunny 3.32e-3 -> 3.09e-3, igea 9.7e-4 -> 9.2e-4; the
-//   dragon at 10 %: 4.13e-4 -> 3.84e-4); the plain mean height is zero by definition of the
-//   centroid.
+//   the nearest members dominate; clusters of 6 points or more); the plain mean height is zero
+//   by definition of the centroid. The lift matters most at low counts, where clusters are
+//   large and curved.
 // - Normal: the L2,1-optimal normal, the normalized average of the members' normals
 //   weighted by theta(r) = exp(-r^2 / h^2) of their distance r to the centroid. When all
 //   weights underflow (a cluster much wider than h) the plain average is used.
@@ -87,12 +86,12 @@ inline Eigen::Vector3d AnyTangent(const Eigen::Vector3d &normal)
 } // namespace detail
 
 /// Width of the weights that read the surface height above a cluster's centroid, in units
-/// of the cluster's radius (measured: 0.2 lowered Δ*RMS a little more but raised fandisk's
-/// Δ*max at 5 % by a quarter; 0.5 gained half as much).
+/// of the cluster's radius: narrow enough that the members nearest the centroid decide, wide
+/// enough that a few points at a crease do not (a narrower width raises the largest error on
+/// CAD parts).
 constexpr double kSurfaceHeightWidth = 0.3;
 /// Clusters with fewer members keep their centroid: too few points to read a height from, and
-/// a negligible sagitta (at level 8, where most clusters are this small, reading it anyway
-/// raised Δ*max on rocker_arm from 0.0048 to 0.0055).
+/// a negligible sagitta (at level 8 most clusters are this small).
 constexpr int kSurfaceHeightMinMembers = 6;
 
 /// Centroid, surfel centre and normal, and tangent frame of a set of points (a cluster or part

@@ -9,25 +9,23 @@
 // member of a cluster is compared with the blended plane at it, and the surfel moves along its
 // normal by the mean signed distance, the least-squares offset of that surfel for the blend it
 // takes part in. The move is kept in Surfel::fitOffset: a splat renderer blends shading, not
-// positions, and draws each surfel at its unfitted position (fitted ones swelled the silhouettes:
-// -1 dB of PSNR against the original mesh in bench/render).
+// positions, and draws each surfel at its unfitted position (drawn where the fit puts them, the
+// splats stand off the surface and swell the silhouettes on convex parts).
 //
 // The blended plane at a point is one step of the projection of vcg_ext/surfel_error: the
 // Gaussian-weighted mean of the surfels around it (its own and those of the clusters of its
 // first 8 neighbour slots: the nearest inside its cone of normals, then the nearest outside it;
 // on its side of a thin part), weights sized by each ellipse; and two
-// members per cluster are compared, not all. The full projection of every member (iterated,
-// onto the 8 nearest surfel centres) took 0.2 s on the igea, three times the whole resampling;
-// this costs a few milliseconds and keeps most of the gain (Delta*RMS of rocker_arm at 20 %:
-// 2.73e-3 at the centroids, 2.36e-3 here, 2.13e-3 with the full projection; all members
-// instead of two: 2.35e-3).
+// members per cluster are compared, not all. This costs a few milliseconds and keeps most of
+// what the full projection of every member (iterated, onto the 8 nearest surfel centres) would
+// gain, at a small fraction of its cost (which is several times the whole resampling's).
 //
 // Clusters holding a crease point stay where they are: there the blend rounds the crease off,
-// and moving a surfel towards the rounded blend takes it off its face (sharp_sphere, fandisk,
-// block: Delta*max rose by 10 to 45 % when they moved). So do surfels whose blend is narrowed
-// (the band around creases, crease_blend.h; the error bound's one-point surfels): their blend
-// follows each surfel's own plane closely already, and fitting the crease band too lowered
-// Delta*RMS by 1 to 5 % but raised buddha_res3's Delta*max above MeshLab's Poisson disk sampling.
+// and moving a surfel towards the rounded blend takes it off its face, which raises the largest
+// error on CAD parts. So do surfels whose blend is narrowed (the band around creases,
+// crease_blend.h; the error bound's one-point surfels): their blend follows each surfel's own
+// plane closely already, and moving them trades a little RMS error for a larger maximum. At a
+// target size the exchanges fit the crease surfels last, where that helps (max_error_exchange.h).
 #ifndef VCG_EXT_GAUSSPHERE_SURFEL_OFFSET_H
 #define VCG_EXT_GAUSSPHERE_SURFEL_OFFSET_H
 
@@ -199,8 +197,8 @@ inline void MoveSurfel(Surfel &s, float offset)
 /// Moves each surfel along its normal by the mean signed distance of sampled members of its
 /// cluster to the blended plane at them (file header). Surfels of clusters with a point marked
 /// in `creasePoints` (null: none) stay, and so do those whose blend is narrowed (blendScale < 1).
-/// With maxPlaneDistance > 0 no member ends farther than that from its surfel's plane (none was
-/// before: the error bound's own-plane stage holds): a move is cut short so that every member
+/// With maxPlaneDistance > 0 no member ends farther than that from its surfel's plane (none is on
+/// entry: the error bound's own-plane stage holds): a move is cut short so that every member
 /// stays within 0.99 x maxPlaneDistance (the rest absorbs the rounding of the float position),
 /// and where none can, the surfel stays.
 /// \pre surfels[c] is the surfel of cluster c of `clusters` (GenerateSurfels); members =
