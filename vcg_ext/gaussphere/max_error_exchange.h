@@ -8,7 +8,7 @@
 // trades clusters where the surface is easy for clusters where it is not, keeping the count:
 // it splits a cluster at the worst point (its own, then those of the surfels blended there,
 // nearest first), merges the cheapest pair of neighbouring clusters elsewhere (MergeCostModel, as
-// MergeToCount chooses; pairs touching the split cluster or an earlier exchange excluded), and
+// MergeToCount chooses; pairs touching the split cluster or a kept exchange excluded), and
 // keeps the exchange if the largest distance went down (by more than the rounding of projections
 // summed in another order, 1e-9 of the diagonal). A split that does not lower it by itself
 // (the count one higher) is not tried with merges; a merge that raises it again is followed by
@@ -22,14 +22,10 @@
 // neither percentile rises); where it does, the moves of the surfels within reach of the points
 // that rose are dropped and the rest tried again (up to 4 trials). At low counts the crease
 // clusters are large (merged: ~20 points at 5 %) and on CAD parts nearly every surfel is one of
-// them, none fitted: block at 5 % measured Delta*RMS 3.56e-2, above Poisson disk's 3.37e-2, and
-// 3.26e-2 with this step (Delta*max 0.0909 -> 0.0880). Over 16 models at 5-30 % (bench/), Delta*RMS
-// fell on 62 of 64 runs (geometric mean -13 %, up to -31 %), and no figure of the metric rose on any
-// (L2,1 own errors unchanged). It costs a projection of every point for the blended normal errors
-// and one to four trials (the dragon at 5 %, 1 thread: 6,610 such surfels, 1.9 -> 4.5 s). Fitting them
-// in the recipe instead (before the exchanges) lowered Delta*RMS less (-8 %) and raised Delta*max on 14
-// of 64 runs by up to 36 % (anchor at 5 %), and the exchanges then stopped early (horse at 5 %:
-// 0.0089 -> 0.0172).
+// them: left unfitted, the blend's rounding of the edges is the whole error there. The step costs
+// a projection of every point for the blended normal errors and one to four trials. It comes
+// after the exchanges, not in the recipe they try: crease surfels fitted before the exchanges
+// raise the largest distance on some models, and the exchanges then stop early.
 //
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
@@ -38,8 +34,8 @@
 // updated where the change reaches (SurfelMaker::Update), into buffers reused by every trial, and
 // the labels are changed in place and back (LabelChange). What stays linear is light: a
 // comparison of every point's reach with the changed centres, a scan of the clusters' sampled
-// neighbours for refits, a copy of the surfels. Measured (gsscale, 10 %, 2 threads): 1 million
-// points 1.7 s of exchanges for 1.3 s of resampling, 20 million 26 s for 43 s. The local measure
+// neighbours for refits, a copy of the surfels. The exchanges take roughly as long as the rest of
+// the resampling (bench/scale, at 10 % of 1 to 20 million points). The local measure
 // equals a full one up to rounding, except where surfel centres tie for the k-th nearest of a
 // projection step (regular grids): which of them a tree returns is arbitrary, for a full measure too.
 #ifndef VCG_EXT_GAUSSPHERE_MAX_ERROR_EXCHANGE_H
@@ -66,12 +62,9 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Search widths measured with bench/'s models at 5-30 % (15 models x 4 targets against the peers of
-/// control_targets): with one split and one merge per round, 6 of the 17 cases where a peer's
-/// Delta*max, Delta*p99.9 or Delta*RMS was lower stayed; with 4 and 4, 2; 8 and 8 fixed no more,
-/// at twice the trials. With the split candidates nearest first (and facing the point), 4 left
-/// the igea at 10 % without a kept exchange (Delta*max 1.4x higher), 6 lowered Delta*max on 36 of
-/// 60 runs and raised it on none (geometric mean -5 %); 8 did the same.
+/// Search widths: one split candidate and one merge per round often find no exchange that lowers
+/// the largest distance; 6 split candidates (nearest the worst point first) and 4 merges per split
+/// find one where wider searches do, at half their trials (bench/'s models at 5-30 %).
 struct MaxErrorExchangeParams
 {
     int maxRounds = 16;      ///< exchanges kept at most
@@ -86,9 +79,9 @@ struct MaxErrorExchangeParams
     /// reach of the points whose figures rose.
     int creaseFitTrials = 4;
     /// ... on inputs of at most this many points: the step projects every point on a surface of
-    /// all the surfels, which at a million points took the run's memory peak from 146 to 165
-    /// B a point beyond the input (over the 150 of bench/scale) and their time from 1.5 to 3.8 s;
-    /// the benchmark's models (up to the dragon's 437,645 points) all have it.
+    /// all the surfels, which at a million points would raise the run's memory peak above the 150
+    /// B a point beyond the input that bench/scale allows, and more than double the exchanges'
+    /// time; the benchmark's models (up to the dragon's 437,645 points) all have it.
     int creaseFitMaxPoints = 500000;
 };
 
@@ -112,8 +105,8 @@ struct MaxErrorExchangeResult
 /// No surface of every surfel is made after Reset: a projection involves only the surfels within
 /// its reach (SurfelSurface::Project), so a point is projected on a surface of the surfels near it,
 /// found through the tree of the set Reset measured (the unchanged ones sit where they sat then)
-/// and the list of those changed since. At 100,000 surfels a whole surface took 70 ms, most of a
-/// trial; at 2 million, seconds.
+/// and the list of those changed since. A whole surface would cost tens of milliseconds per trial
+/// at 100,000 surfels, and seconds at 2 million.
 class BlendedDistances
 {
 public:
@@ -598,9 +591,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     BlendedDistances distances(points, normals, diagonal);
     if (!goOn()) return result; // cancelled: the caller discards the run
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
-    // the merges tried with one split, are the clusters of a merge that failed (twirl at 5 %: the
-    // next cheapest pairs merged the same neighbourhood back, and Delta*max stopped at 0.077
-    // instead of 0.054). The pairs between the other clusters keep their links and costs, so
+    // the merges tried with one split, are the clusters of a merge that failed (otherwise the next
+    // cheapest pairs merge the same neighbourhood back, and the exchanges stall). The pairs between the other clusters keep their links and costs, so
     // they are listed once: every linked pair, cheapest first (ties by index: deterministic).
     // The links read every neighbour slot, the surfels and their fit only the first
     // kOffsetNeighbors: the graph is cut to those once the links are known, before the costs,

@@ -3,8 +3,8 @@
 // A clustering becomes surfels in three steps: one surfel per cluster (GenerateSurfels), narrower
 // blends around creases (NarrowBlendsAroundCreases), offsets fitted to the blend
 // (FitSurfelOffsets). The exchanges of max_error_exchange.h try hundreds of clusterings that
-// differ from the current one in two or three clusters; making every surfel anew for each was
-// most of their time and grew with the input. SurfelMaker::Update redoes only what a change
+// differ from the current one in two or three clusters; making every surfel anew for each would
+// be most of their time and grow with the input. SurfelMaker::Update redoes only what a change
 // reaches: the surfels of the changed clusters, and the fits of the clusters whose sampled
 // members blend a changed cluster's surfel; the result equals Make's (a test compares them).
 #ifndef VCG_EXT_GAUSSPHERE_SURFEL_RECIPE_H
