@@ -5,7 +5,7 @@
 // (an MLS projection, as in the error metric of section 5.2 or a splat renderer). Across
 // a crease the blend mixes the two faces, and it reaches as far from the crease as the
 // surfels next to it are wide, so large flat clusters beside a crease round it off (on
-// the block CAD part the largest error came from 27-point clusters touching an edge).
+// CAD parts such clusters along the edges set the largest error).
 // Cluster normalization keeps the clusters that hold a crease point small; see
 // ClusterNormalizationParams::creaseClusterSize. The neighbour search marks them
 // (AdaptiveNeighborParams::creaseAngle), while each point's neighbours are at hand.

@@ -18,7 +18,7 @@
 // Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
 // the sum of squared distances without raising the largest distance, nor the number of points
-// beyond the 99.9th percentile of the distance or of the blended normal error as they were (so
+// beyond the 99.9th percentile of the distance or of the blended normal error on entry (so
 // neither percentile rises); where it does, the moves of the surfels within reach of the points
 // that rose are dropped and the rest tried again (up to 4 trials). At low counts the crease
 // clusters are large (merged: ~20 points at 5 %) and on CAD parts nearly every surfel is one of
@@ -481,8 +481,8 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
 {
     // The surfels left at creases (surfel_offset.h), fitted where the measure allows it: the sum of
     // squared distances must fall, and neither the largest distance, nor the number of points
-    // beyond the 99.9th percentiles of the distance and of the blended normal error (as they were
-    // before this step) may rise, so neither percentile rises.
+    // beyond the 99.9th percentiles of the distance and of the blended normal error (their values
+    // on entry to this step) may rise, so neither percentile rises.
     const ClusterMembers members(clusters);
     const std::vector<std::pair<int, float>> moves =
         maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);

@@ -46,10 +46,10 @@
  * surfel, where it tends to the plane of the surfel nearest in the weights' metric.
  *
  * The projection of a plane sample onto itself is exact; on curved surfaces a(x) lies inside
- * the surface, so S' = S gives a small non-zero floor that grows with widthFactor. Measured with
- * the defaults on ../shared/data: bunny.ply (34,834 points) Δ*_RMS 3.3e-4, Δ*_max 3.9e-3
- * (widthFactor 1.0: 2.7e-4; 2.0: 3.5e-4); dragon.ply (437,645 points) Δ*_RMS 4.7e-5. Read a
- * simplification's figures against this floor.
+ * the surface, so S' = S gives a small non-zero floor that grows with widthFactor. With the
+ * defaults, on ../shared/data: bunny.ply (34,834 points) Δ*_RMS 3.3e-4, Δ*_max 3.9e-3
+ * (widthFactor 1.0: 2.7e-4; 2.0: 3.5e-4); dragon.ply (437,645 points) Δ*_RMS 4.7e-5
+ * (bench/results/table1.md lists every model). Read a simplification's figures against it.
  *
  * \section surfel_error_figures Figures
  * Over the points q of S with a finite position:
