@@ -593,7 +593,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
     // the merges tried with one split, are the clusters of a merge that failed (otherwise the next
     // cheapest pairs merge the same neighbourhood back, and the exchanges stall). The pairs
-    // between the other clusters keep their links and costs, so they are listed once: every linked pair, cheapest first (ties by index: deterministic).
+    // between the other clusters keep their links and costs, so they are listed once: every
+    // linked pair, cheapest first (ties by index: deterministic).
     // The links read every neighbour slot, the surfels and their fit only the first
     // kOffsetNeighbors: the graph is cut to those once the links are known, before the costs,
     // the pairs and the exchange's own buffers exist.
