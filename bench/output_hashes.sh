@@ -6,8 +6,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 gsresample="$(realpath "$1")"; shift
-threads=("${@:-1 2}")
-[ $# -gt 0 ] && threads=("$@") || threads=(1 2)
+threads=(1 2)
+[ $# -gt 0 ] && threads=("$@")
 data="${SHARED_DATA_DIR:-$here/../shared/data}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

@@ -24,7 +24,7 @@ public:
     FILTER_ARITY filterArity(QAction *) const override;
     int getPreConditions(QAction *) const override;
     int postCondition(QAction *) const override;
-    void initParameterSet(QAction *, MeshModel &m, RichParameterList &par) override;
+    void initParameterSet(QAction *, MeshModel &, RichParameterList &par) override;
     bool applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb) override;
 
 private:

@@ -178,11 +178,11 @@ TEST(AdaptiveNeighbors, IndependentOfThreadCount)
     const gstest::PointSet s = RandomOrientedPoints(6000, 12);
     NeighborGraph one, two;
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         one = Build(s, 16, 0.42);
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         two = Build(s, 16, 0.42);
     }
     EXPECT_EQ(one.count, two.count);
@@ -198,7 +198,7 @@ TEST(AdaptiveNeighbors, KeepFirstSlotsKeepsEachRowsFirstSlots)
     const gstest::PointSet s = RandomOrientedPoints(70000, 5); // adjacency 4.5 MB: a mapped buffer
     for (int threads : {1, 3})
         for (const auto &cut : {std::make_pair(16, 1), std::make_pair(16, 8), std::make_pair(9, 8), std::make_pair(3, 2)}) {
-            vcg::gaussphere::ScopedThreadCount t(threads);
+            gstest::ScopedThreadCount t(threads);
             NeighborGraph g = Build(s, cut.first, 0.42);
             ASSERT_EQ(g.stride, cut.first);
             std::vector<int> expected;

@@ -32,7 +32,7 @@ TEST(ClusterMembers, GroupsEveryPointInIncreasingOrderForAnyThreadCount)
         }
         for (int threads : {1, 2, 3}) {
             SCOPED_TRACE(threads);
-            const vcg::gaussphere::ScopedThreadCount count(threads);
+            const gstest::ScopedThreadCount count(threads);
             const ClusterMembers m(c);
             ASSERT_EQ(int(m.offset.size()), c.clusterCount + 1);
             EXPECT_EQ(m.offset[0], 0);

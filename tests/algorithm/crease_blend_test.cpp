@@ -59,11 +59,11 @@ TEST(CreaseBlend, ScaleOutsideZeroToOneIsRejected)
 {
     for (float bad : {0.f, -0.5f, 1.01f, std::numeric_limits<float>::quiet_NaN()}) {
         ResamplingParams p;
-        p.creaseBlendScale = bad;
+        p.tuning.creaseBlendScale = bad;
         EXPECT_NE(p.Validate().find("CreaseBlendScale"), std::string::npos) << bad;
     }
     ResamplingParams p;
-    p.creaseBlendScale = 1.f;
+    p.tuning.creaseBlendScale = 1.f;
     EXPECT_EQ(p.Validate(), "");
 }
 
@@ -74,12 +74,12 @@ TEST(CreaseBlend, OnACubeTheEdgesComeOutSharper)
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     const ResamplingResult narrowed = gstest::Resample(cube);
     ResamplingParams wideParam;
-    wideParam.creaseBlendScale = 1.f;
+    wideParam.tuning.creaseBlendScale = 1.f;
     const ResamplingResult wide = gstest::Resample(cube, wideParam);
     ASSERT_EQ(narrowed.surfels.size(), wide.surfels.size()) << "the blend scale changes no cluster";
 
     const auto members = gstest::MembersOf(narrowed);
-    const float defaultScale = ResamplingParams().creaseBlendScale, spacing = 2.f / 24;
+    const float defaultScale = ResamplingParams().tuning.creaseBlendScale, spacing = 2.f / 24;
     int narrowedCount = 0, interior = 0;
     for (size_t c = 0; c < members.size(); ++c) {
         const Surfel &s = narrowed.surfels[c];
@@ -134,11 +134,11 @@ TEST(CreaseBlend, TheErrorBoundHoldsForTheNarrowedBlend)
     ResamplingParams p;
     p.maxErrorFraction = 0.002;
     const ResamplingResult narrowed = gstest::Resample(cube, p);
-    p.creaseBlendScale = 1.f;
+    p.tuning.creaseBlendScale = 1.f;
     const ResamplingResult wide = gstest::Resample(cube, p);
     ASSERT_GT(narrowed.stats.surfelsNarrowedAtCreases, 0);
     EXPECT_EQ(wide.stats.surfelsNarrowedAtCreases, 0);
-    const float defaultScale = ResamplingParams().creaseBlendScale;
+    const float defaultScale = ResamplingParams().tuning.creaseBlendScale;
     int atDefault = 0;
     for (const Surfel &s : narrowed.surfels) {
         if (s.memberCount > 1) EXPECT_TRUE(s.blendScale == 1.f || s.blendScale == defaultScale) << s.blendScale;

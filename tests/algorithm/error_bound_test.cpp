@@ -90,12 +90,12 @@ TEST(ErrorBound, SharpEdgesMeetTheBoundByNarrowingOnePointSurfels)
     // the crease blend scale (crease_blend.h).
     const PointGrid grid(s.points);
     const NeighborGraph graph = BuildAdaptiveNeighbors(s.points, s.normals, AdaptiveNeighborParams(), grid);
-    const double margin = ResamplingParams().coverageMargin;
+    const double margin = ResamplingParams().tuning.coverageMargin;
     int narrowed = 0;
     for (int i = 0; i < s.Size(); ++i) {
         const Surfel &f = r.surfels[r.representative[i]];
         if (f.memberCount != 1) {
-            EXPECT_TRUE(f.blendScale == 1.f || f.blendScale == ResamplingParams().creaseBlendScale) << "point " << i;
+            EXPECT_TRUE(f.blendScale == 1.f || f.blendScale == ResamplingParams().tuning.creaseBlendScale) << "point " << i;
             continue;
         }
         EXPECT_NEAR(f.majorAxis.Norm(), margin * graph.spacing[i], 1e-5 * graph.spacing[i]) << "point " << i;
@@ -147,11 +147,11 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet s = BumpySphere(8000, 3);
     ResamplingResult one, two;
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         one = gstest::Resample(s, Bounded(2e-4));
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         two = gstest::Resample(s, Bounded(2e-4));
     }
     EXPECT_GT(one.stats.splitsForSurfaceBound, 0);
@@ -162,11 +162,11 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     // With narrowed surfels (sharp edges): the same axes too.
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         one = gstest::Resample(cube, Bounded(1e-4));
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         two = gstest::Resample(cube, Bounded(1e-4));
     }
     EXPECT_GT(one.stats.narrowingsForSurfaceBound, 0);

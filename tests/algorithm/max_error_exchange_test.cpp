@@ -183,11 +183,11 @@ TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     ResamplingResult one, two;
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         one = gstest::Resample(cube, AtTarget(150, 16));
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         two = gstest::Resample(cube, AtTarget(150, 16));
     }
     EXPECT_GT(one.stats.exchangesForMaxError, 0);

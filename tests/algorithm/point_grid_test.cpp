@@ -215,7 +215,7 @@ TEST(PointGrid, OrderIsTheSameForAnyThreadCount)
     IndexArray reference;
     for (int threads : {1, 2, 3}) {
         SCOPED_TRACE(threads);
-        const vcg::gaussphere::ScopedThreadCount count(threads);
+        const gstest::ScopedThreadCount count(threads);
         const PointGrid grid(pts);
         if (reference.empty()) {
             reference = grid.Order();

@@ -78,11 +78,11 @@ TEST(ResamplingInputs, UnusableVerticesAreSkippedAndCounted)
     for (int i = 1; i < 700; i += 3) s.normals[i] = P3(0, 0, 0);
     ResamplingResult one;
     {
-        const vcg::gaussphere::ScopedThreadCount t(1);
+        const gstest::ScopedThreadCount t(1);
         one = gstest::Resample(s);
     }
     for (int threads : {2, 3}) {
-        const vcg::gaussphere::ScopedThreadCount t(threads);
+        const gstest::ScopedThreadCount t(threads);
         const ResamplingResult many = gstest::Resample(s);
         EXPECT_EQ(many.stats.skippedCount, one.stats.skippedCount);
         EXPECT_EQ(many.representative, one.representative) << threads << " threads";
@@ -199,11 +199,11 @@ TEST(ResamplingInputs, InvalidParametersAreRejectedByName)
         {"threshold 1", [](ResamplingParams &p) { p.normalizationThreshold = 1.0; }, "NormalizationThreshold"},
         {"threshold NaN", [](ResamplingParams &p) { p.normalizationThreshold = kNaNd; }, "NormalizationThreshold"},
         {"depth -1", [](ResamplingParams &p) { p.propagationDepth = -1; }, "PropagationDepth"},
-        {"iterations -1", [](ResamplingParams &p) { p.maxIterations = -1; }, "MaxIterations"},
-        {"weight width 0", [](ResamplingParams &p) { p.weightWidth = 0; }, "WeightWidth"},
+        {"iterations -1", [](ResamplingParams &p) { p.tuning.maxIterations = -1; }, "MaxIterations"},
+        {"weight width -1", [](ResamplingParams &p) { p.weightWidth = -1; }, "WeightWidth"},
         {"weight width NaN", [](ResamplingParams &p) { p.weightWidth = kNaNd; }, "WeightWidth"},
-        {"margin -1", [](ResamplingParams &p) { p.coverageMargin = -1; }, "margin"},
-        {"margin NaN", [](ResamplingParams &p) { p.coverageMargin = kNaNd; }, "margin"},
+        {"margin -1", [](ResamplingParams &p) { p.tuning.coverageMargin = -1; }, "margin"},
+        {"margin NaN", [](ResamplingParams &p) { p.tuning.coverageMargin = kNaNd; }, "margin"},
     };
     const gstest::PointSet s = gstest::PlaneGrid(10, 10);
     for (const BadParam &c : cases) {
@@ -219,7 +219,7 @@ TEST(ResamplingInputs, InvalidParametersAreRejectedByName)
                      +[](ResamplingParams &p) { p.neighborCount = 1; },
                      +[](ResamplingParams &p) { p.neighborCount = 255; },
                      +[](ResamplingParams &p) { p.propagationDepth = 0; },
-                     +[](ResamplingParams &p) { p.maxIterations = 0; },
+                     +[](ResamplingParams &p) { p.tuning.maxIterations = 0; },
                      +[](ResamplingParams &p) { p.normalizationThreshold = 1.0001; }}) {
         ResamplingParams p;
         set(p);

@@ -67,7 +67,7 @@ TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
         float nearest = 2;
         for (int i : members[c]) nearest = std::min(nearest, gstest::DistanceToCubeEdge(Cube(), i));
         if (nearest < 1.5f * spacing)
-            EXPECT_LE(int(members[c].size()), defaults.creaseClusterSize) << "cluster " << c << " touches an edge";
+            EXPECT_LE(int(members[c].size()), defaults.tuning.creaseClusterSize) << "cluster " << c << " touches an edge";
         if (nearest > 3.5f * spacing) {
             ++interiorClusters;
             interiorPoints += int(members[c].size());
@@ -79,7 +79,7 @@ TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
         EXPECT_LE(perFace[f], 100) << "face " << f << ": " << 23 * 23 << " coplanar points";
     }
     ASSERT_GT(interiorClusters, 0);
-    EXPECT_GE(double(interiorPoints) / interiorClusters, 1.5 * defaults.creaseClusterSize)
+    EXPECT_GE(double(interiorPoints) / interiorClusters, 1.5 * defaults.tuning.creaseClusterSize)
         << "inside the faces, surfels stay larger than the crease limit";
     EXPECT_LT(Result().surfels.size(), Cube().Size() / 4);
     std::printf("cube: %d points -> %zu surfels (per face: %d %d %d %d %d %d), %.1f points per interior surfel\n",
@@ -117,18 +117,15 @@ TEST(ResamplingPipeline, CubeFacesOnlyKeepFacesApart)
 TEST(ResamplingPipeline, SphereCountGrowsWithLevel)
 {
     const gstest::PointSet s = gstest::FibonacciSphere(20000);
-    for (BasePolyhedron base : {BasePolyhedron::Octahedron, BasePolyhedron::Icosahedron}) {
-        int previous = 0;
-        for (int level : {8, 16, 24}) {
-            ResamplingParams p;
-            p.subdivisionLevel = level;
-            p.base = base;
-            const ResamplingResult r = gstest::Resample(s, p);
-            EXPECT_GT(int(r.surfels.size()), previous) << "level " << level;
-            EXPECT_LT(int(r.surfels.size()), s.Size());
-            if (level == 8) gstest::ExpectValidResult(r, s);
-            previous = int(r.surfels.size());
-        }
+    int previous = 0;
+    for (int level : {8, 16, 24}) {
+        ResamplingParams p;
+        p.subdivisionLevel = level;
+        const ResamplingResult r = gstest::Resample(s, p);
+        EXPECT_GT(int(r.surfels.size()), previous) << "level " << level;
+        EXPECT_LT(int(r.surfels.size()), s.Size());
+        if (level == 8) gstest::ExpectValidResult(r, s);
+        previous = int(r.surfels.size());
     }
 }
 
@@ -151,11 +148,11 @@ TEST(ResamplingPipeline, NormalizationStopsWhenTheCountSettles)
 {
     const gstest::PointSet s = gstest::PlaneGrid(60, 60, 0.1f);
     ResamplingParams p;
-    p.maxClusterSize = 0; // shape alone decides the splits here
+    p.tuning.maxClusterSize = 0; // shape alone decides the splits here
     const ResamplingResult settled = gstest::Resample(s, p);
     gstest::ExpectValidResult(settled, s);
     EXPECT_EQ(settled.stats.iterations, 1);
-    p.convergenceFraction = 0;
+    p.tuning.convergenceFraction = 0;
     const ResamplingResult fixedPoint = gstest::Resample(s, p);
     EXPECT_GT(fixedPoint.stats.iterations, 1);
     EXPECT_LT(std::abs(int(fixedPoint.surfels.size()) - int(settled.surfels.size())), int(0.01 * 3600) + 1);
@@ -167,7 +164,7 @@ TEST(ResamplingPipeline, StripClustersAreCompact)
     const ResamplingParams p;
     const ResamplingResult r = gstest::Resample(s, p);
     gstest::ExpectValidResult(r, s);
-    EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold);
+    EXPECT_LE(WorstSplittableElongation(s, r, p.tuning.minSplitSize), p.normalizationThreshold);
     // A 3-wide cluster satisfies the threshold only up to length ~7 ((L^2-1)/8 <= 6), so
     // the 900 points need at least 300 / 8 clusters.
     EXPECT_GE(r.surfels.size(), 300u / 8);
@@ -181,11 +178,11 @@ TEST(ResamplingPipeline, ClustersAreCompactWhenNormalizationRunsToAFixedPoint)
     for (const gstest::PointSet &s : {gstest::PlaneGrid(60, 60, 0.1f), gstest::PlaneGrid(300, 3, 0.1f)}) {
         ResamplingParams p;
         p.propagationDepth = 0;
-        p.convergenceFraction = 0;
+        p.tuning.convergenceFraction = 0;
         const ResamplingResult r = gstest::Resample(s, p);
         gstest::ExpectValidResult(r, s);
         EXPECT_EQ(r.stats.naiveCount, 1);
-        EXPECT_LE(WorstSplittableElongation(s, r, p.minSplitSize), p.normalizationThreshold);
+        EXPECT_LE(WorstSplittableElongation(s, r, p.tuning.minSplitSize), p.normalizationThreshold);
     }
 }
 
@@ -217,11 +214,11 @@ TEST(ResamplingPipeline, IdenticalOutputForOneAndTwoThreads)
     const gstest::PointSet s = NoisySphere(20000, 21);
     ResamplingResult one, two;
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         one = gstest::Resample(s);
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         two = gstest::Resample(s);
     }
     ASSERT_EQ(one.surfels.size(), two.surfels.size());
@@ -324,7 +321,7 @@ TEST(ResamplingPipeline, WriteSurfelsStoresBlendScalesWhenNarrowed)
     for (size_t i = 0; i < creases.surfels.size(); ++i) EXPECT_EQ(blend[i], creases.surfels[i].blendScale) << i;
     // Written again without narrowing into the same mesh: no stale attribute (Clear() keeps them).
     p = ResamplingParams();
-    p.creaseBlendScale = 1;
+    p.tuning.creaseBlendScale = 1;
     WriteSurfels(gstest::Resample(s, p).surfels, out);
     EXPECT_FALSE(vcg::tri::HasPerVertexAttribute(out, kBlendScaleAttribute));
 }

@@ -161,11 +161,11 @@ TEST(SingletonRejoining, IndependentOfThreadCountAndOfPassBookkeeping)
     Clustering one = naive, two = naive;
     int joinedOne, joinedTwo;
     {
-        vcg::gaussphere::ScopedThreadCount t(1);
+        gstest::ScopedThreadCount t(1);
         joinedOne = RejoinSingletons(s.normals, g, ap.coneChord, one);
     }
     {
-        vcg::gaussphere::ScopedThreadCount t(2);
+        gstest::ScopedThreadCount t(2);
         joinedTwo = RejoinSingletons(s.normals, g, ap.coneChord, two);
     }
     EXPECT_GT(joinedOne, 500) << "the fixture must produce many singletons";

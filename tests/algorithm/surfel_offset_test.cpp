@@ -156,11 +156,11 @@ TEST(SurfelOffset, SameResultForAnyThreadCount)
     const Fixture f(gstest::FibonacciSphere(4000), p);
     std::vector<Surfel> one = f.surfels, two = f.surfels;
     {
-        const vcg::gaussphere::ScopedThreadCount threads(1);
+        const gstest::ScopedThreadCount threads(1);
         f.Fit(one);
     }
     {
-        const vcg::gaussphere::ScopedThreadCount threads(2);
+        const gstest::ScopedThreadCount threads(2);
         f.Fit(two);
     }
     EXPECT_EQ(LargestMove(one, two), 0.0);

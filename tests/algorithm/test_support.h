@@ -12,7 +12,7 @@
 
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
-#include <vcg_ext/gaussphere/thread_budget.h>
+#include <omp.h>
 
 namespace gstest {
 
@@ -144,6 +144,19 @@ inline std::map<int, int> ClusterSizes(const IndexArray &label)
 }
 
 inline double Dot(const P3 &a, const P3 &b) { return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]; }
+
+/// Sets OpenMP's thread count for a scope and restores the caller's at its end.
+class ScopedThreadCount
+{
+public:
+    explicit ScopedThreadCount(int threads) : saved_(omp_get_max_threads()) { omp_set_num_threads(std::max(1, threads)); }
+    ~ScopedThreadCount() { omp_set_num_threads(saved_); }
+    ScopedThreadCount(const ScopedThreadCount &) = delete;
+    ScopedThreadCount &operator=(const ScopedThreadCount &) = delete;
+
+private:
+    int saved_;
+};
 
 } // namespace gstest
 

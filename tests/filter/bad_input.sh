@@ -26,14 +26,10 @@ expect_error one.ply "$script" "at least 2"
 # Out-of-range parameters name the parameter.
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with SubdivisionLevel=1)" "SubdivisionLevel"
 expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NeighborCount=0)" "NeighborCount"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with NormalizationThreshold=0.5)" "NormalizationThreshold"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with PropagationDepth=-3)" "PropagationDepth"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxClusterSize=-1)" "MaxClusterSize"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseAngle"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseClusterSize=-2)" "CreaseClusterSize"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=0)" "CreaseBlendScale"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseBlendScale=1.5)" "CreaseBlendScale"
-expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxErrorExchanges=-1)" "MaxErrorExchanges"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with CreaseAngle=150)" "CreaseAngle must be at least 0 and below 120"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with TargetCount=-5)" "TargetCount must be at least 0"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with TargetPercentage=150)" "TargetPercentage must be between 0 and 100"
+expect_error "$SAMPLE_DIR/fandisk.ply" "$(script_with MaxError=1)" "MaxError must be at least 0 and below 1"
 
 # NaN and zero normals are skipped and counted; the rest is resampled.
 python3 - <<'PY' | write_ply mixed.ply
@@ -84,7 +80,7 @@ gsresample_fails() {
 gsresample_fails 1 missing.ply out_missing.surfel "cannot read missing.ply"
 gsresample_fails 1 no_normals.ply out_no_normals.surfel "no per-vertex normals"
 gsresample_fails 1 one.ply out_one.surfel "at least 2"
-gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_blend.surfel "CreaseBlendScale must be above 0" --crease-blend 0
+gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_threshold.surfel "--threshold: expected a value above 1" --threshold 1
 gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_exchanges.surfel "--exchanges: expected an integer between 0 and 100000" --target 100 --exchanges -3
 gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"
 gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.ply "cannot write no_such_folder/out.ply"

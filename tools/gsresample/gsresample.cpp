@@ -28,20 +28,8 @@ using namespace vcg::gaussphere;
 
 namespace {
 
-const char kUsage[] =
-    "usage: gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [--level N] [--k K] [--depth D] [--threshold T]\n"
-    "                  [--min-split S] [--max-cluster M] [--crease-angle DEG] [--crease-cluster M]\n"
-    "                  [--crease-min-split S] [--crease-blend F] [--iterations I] [--weight-width H]\n"
-    "                  [--convergence F] [--base octahedron|icosahedron] [--reference seed|current]\n"
-    "                  [--order dfs|bfs] [--target COUNT] [--exchanges N]\n"
-    "                  [--max-error FRACTION_OF_BBOX_DIAGONAL] [--fit-offsets 0|1]\n"
-    "       gsresample --help\n"
-    "INPUT holds x y z nx ny nz per vertex. The parameters are those of the MeshLab filter\n"
-    "(README.md); the output is a .surfel file when OUTPUT ends in .surfel, otherwise a PLY.\n";
-
 constexpr std::size_t kMaxPathChars = 100;
 constexpr std::size_t kMaxMessageChars = 300;
-const double kInfinity = std::numeric_limits<double>::infinity();
 const int kIntMax = std::numeric_limits<int>::max();
 
 int Fail(int status, const std::string &message)
@@ -52,75 +40,49 @@ int Fail(int status, const std::string &message)
 
 std::string PathText(const std::string &path) { return gsresample::Printable(path, kMaxPathChars); }
 
-/// One option taking a value: `set` parses it into the parameters or explains why it cannot.
-struct Option
+/// Usage and the options, from the parameter table (resampling_params.h).
+std::string Usage()
 {
-    std::string name;
-    std::function<bool(const std::string &value, ResamplingParams &param, std::string &error)> set;
-};
-
-Option IntOption(const char *name, int min, int max, int ResamplingParams::*field)
-{
-    return {name, [=](const std::string &value, ResamplingParams &param, std::string &error) {
-                return gsresample::ParseInt(value, min, max, param.*field, error);
-            }};
+    std::string text = "usage: gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [OPTION VALUE]...\n"
+                       "       gsresample --help\n"
+                       "INPUT holds x y z nx ny nz per vertex; the output is a .surfel file (ellipse axes included)\n"
+                       "when OUTPUT ends in .surfel, otherwise a PLY. The size control is the first given of\n"
+                       "--max-error, --target, --percentage, else the level. Options (default; valid values):\n";
+    for (const ParameterSpec &spec : ParameterTable()) {
+        if (spec.option == nullptr) continue;
+        char line[96];
+        std::snprintf(line, sizeof line, "  %-15s %s (%g; %s)%s\n", spec.option,
+                      spec.kind == ParameterKind::Int ? "N" : spec.kind == ParameterKind::Bool ? "0|1" : "X",
+                      spec.defaultValue, spec.RangeText().c_str(),
+                      spec.audience == ParameterAudience::Expert ? " [expert]" : "");
+        text += line;
+        text += "      " + std::string(spec.help) + "\n";
+    }
+    return text;
 }
 
-Option DoubleOption(const char *name, double min, double max, double ResamplingParams::*field)
+/// Parses `value` for `spec` into `param`, or explains why it cannot.
+bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingParams &param, std::string &error)
 {
-    return {name, [=](const std::string &value, ResamplingParams &param, std::string &error) {
-                return gsresample::ParseDouble(value, min, max, param.*field, error);
-            }};
-}
-
-template <class Field>
-Option ChoiceOption(const char *name, std::vector<std::string> choices, std::vector<Field> values,
-                    Field ResamplingParams::*field)
-{
-    return {name, [=](const std::string &value, ResamplingParams &param, std::string &error) {
-                int index = 0;
-                if (!gsresample::ParseChoice(value, choices, index, error)) return false;
-                param.*field = values[std::size_t(index)];
-                return true;
-            }};
-}
-
-// The ranges are the ones ResamplingParams::Validate accepts where those are plain intervals;
-// Validate, run next, rejects the rest (open bounds, excluded values).
-std::vector<Option> Options()
-{
-    typedef ResamplingParams P;
-    return {
-        IntOption("--level", 2, 256, &P::subdivisionLevel),
-        IntOption("--k", 1, 255, &P::neighborCount),
-        IntOption("--depth", 0, kIntMax, &P::propagationDepth),
-        DoubleOption("--threshold", 1, kInfinity, &P::normalizationThreshold),
-        IntOption("--min-split", 0, kIntMax, &P::minSplitSize),
-        IntOption("--max-cluster", 0, kIntMax, &P::maxClusterSize),
-        DoubleOption("--crease-angle", 0, 120, &P::creaseAngle),
-        IntOption("--crease-cluster", 0, kIntMax, &P::creaseClusterSize),
-        IntOption("--crease-min-split", 0, kIntMax, &P::creaseMinSplitSize),
-        {"--crease-blend",
-         [](const std::string &value, ResamplingParams &param, std::string &error) {
-             double scale = 0;
-             if (!gsresample::ParseDouble(value, 0, 1, scale, error)) return false;
-             param.creaseBlendScale = float(scale);
-             return true;
-         }},
-        IntOption("--iterations", 0, kIntMax, &P::maxIterations),
-        DoubleOption("--weight-width", -kInfinity, kInfinity, &P::weightWidth),
-        DoubleOption("--convergence", 0, kInfinity, &P::convergenceFraction),
-        IntOption("--target", 0, kIntMax, &P::targetCount),
-        IntOption("--exchanges", 0, 100000, &P::maxErrorExchanges),
-        DoubleOption("--max-error", 0, 1, &P::maxErrorFraction),
-        ChoiceOption<bool>("--fit-offsets", {"0", "1"}, {false, true}, &P::fitOffsets),
-        ChoiceOption<BasePolyhedron>("--base", {"octahedron", "icosahedron"},
-                                     {BasePolyhedron::Octahedron, BasePolyhedron::Icosahedron}, &P::base),
-        ChoiceOption<PropagationReference>("--reference", {"seed", "current"},
-                                           {PropagationReference::Seed, PropagationReference::CurrentPoint}, &P::reference),
-        ChoiceOption<PropagationOrder>("--order", {"dfs", "bfs"},
-                                       {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}, &P::order),
-    };
+    double number = 0;
+    if (spec.kind == ParameterKind::Bool) {
+        int index = 0;
+        if (!gsresample::ParseChoice(value, {"0", "1"}, index, error)) return false;
+        number = index;
+    } else if (spec.kind == ParameterKind::Int) {
+        int integer = 0;
+        const int max = spec.max >= kIntMax ? kIntMax : int(spec.max);
+        if (!gsresample::ParseInt(value, int(spec.min), max, integer, error)) return false;
+        number = integer;
+    } else if (!gsresample::ParseDouble(value, spec.min, spec.max, number, error)) {
+        return false;
+    }
+    if (!spec.Accepts(number)) {
+        error = "expected a value " + spec.RangeText() + ", got '" + gsresample::Printable(value) + "'";
+        return false;
+    }
+    spec.set(param, number);
+    return true;
 }
 
 struct CommandLine
@@ -134,7 +96,6 @@ struct CommandLine
 /// given at most once. False with a one-line reason on any other shape.
 bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &error)
 {
-    const std::vector<Option> options = Options();
     std::vector<std::string> paths, seen;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
@@ -146,9 +107,9 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
             paths.push_back(arg);
             continue;
         }
-        const Option *option = nullptr;
-        for (const Option &o : options)
-            if (o.name == arg) option = &o;
+        const ParameterSpec *option = nullptr;
+        for (const ParameterSpec &spec : ParameterTable())
+            if (spec.option != nullptr && arg == spec.option) option = &spec;
         if (!option) {
             error = "unknown option '" + gsresample::Printable(arg) + "' (see --help)";
             return false;
@@ -164,7 +125,7 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
             }
         }
         seen.push_back(arg);
-        if (!option->set(argv[++a], line.param, error)) {
+        if (!SetOption(*option, argv[++a], line.param, error)) {
             error = arg + ": " + error;
             return false;
         }
@@ -199,18 +160,6 @@ bool WriteOutput(const std::string &path, OrientedPointMesh &surfels, std::strin
     return false;
 }
 
-/// Why the output count differs from a requested target, or empty when it does not.
-std::string TargetMissReason(const ResamplingParams &param, const ResamplingStats &s)
-{
-    if (param.targetCount <= 0 || s.outputCount == param.targetCount) return std::string();
-    const int usable = s.inputCount - s.skippedCount;
-    if (s.outputCount < param.targetCount)
-        return usable < param.targetCount
-                   ? "the input has only " + std::to_string(usable) + " usable point(s)"
-                   : "no cluster left to split";
-    return param.maxErrorFraction > 0 ? "the error bound needs more" : "no neighbouring clusters left to merge";
-}
-
 void PrintFigures(const ResamplingStats &s)
 {
     std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
@@ -229,7 +178,7 @@ int Run(int argc, char **argv)
     std::string error;
     if (!ParseCommandLine(argc, argv, line, error)) return Fail(2, error);
     if (line.help) {
-        std::fputs(kUsage, stdout);
+        std::fputs(Usage().c_str(), stdout);
         return 0;
     }
     const std::string invalid = line.param.Validate();
@@ -241,10 +190,10 @@ int Run(int argc, char **argv)
     const ResamplingResult r = ResamplePointSet(in, line.param);
     WriteSurfels(r.surfels, out);
     PrintFigures(r.stats);
-    const std::string miss = TargetMissReason(line.param, r.stats);
+    const std::string miss = r.stats.TargetMissReason();
     if (!miss.empty())
         std::fprintf(stderr, "gsresample: warning: %d surfels instead of the %d requested: %s\n", r.stats.outputCount,
-                     line.param.targetCount, miss.c_str());
+                     r.stats.targetCount, miss.c_str());
     if (!WriteOutput(line.output, out, error))
         return Fail(1, "cannot write " + PathText(line.output) + ": " + error);
     return 0;

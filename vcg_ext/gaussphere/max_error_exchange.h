@@ -78,11 +78,6 @@ struct MaxErrorExchangeParams
     /// ... tried at most this many times: each failed trial drops the moves of the surfels within
     /// reach of the points whose figures rose.
     int creaseFitTrials = 4;
-    /// ... on inputs of at most this many points: the step projects every point on a surface of
-    /// all the surfels, which at a million points would raise the run's memory peak above the 150
-    /// B a point beyond the input that bench/scale allows, and more than double the exchanges'
-    /// time; the benchmark's models (up to the dragon's 437,645 points) all have it.
-    int creaseFitMaxPoints = 500000;
 };
 
 /// Points projected at a time for the blended normal errors of the crease fit.
@@ -691,7 +686,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         if (!kept) break;
         ++result.exchanges;
     }
-    if (!result.cancelled && param.creaseFitMinMembers > 0 && int(points.size()) <= param.creaseFitMaxPoints && goOn())
+    if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn())
         result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials, goOn);
     result.maxAfter = distances.Max();
     surfels = std::move(current.fitted);

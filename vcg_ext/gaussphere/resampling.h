@@ -1,51 +1,26 @@
-// Feature-sensitive resampling of an oriented point set with a subdivided Gaussian
-// sphere: the whole pipeline of the paper's section 3, templated on the vcg mesh type.
+// Feature-sensitive resampling of an oriented point set with a subdivided Gaussian sphere: the
+// whole pipeline of the paper's section 3, templated on the vcg mesh type. docs/algorithm.md maps
+// the paper's sections to the headers and gives the reason for each choice where it is silent.
 //
-//   1. adaptive neighbours (k nearest inside the cone of normals)  adaptive_neighbors.h
+//   input: the usable points at a unit scale                       usable_points.h
+//   1. adaptive neighbours (k nearest inside the cone of normals)  point_grid.h, adaptive_neighbors.h
 //   2. naive sampling by index propagation                         index_propagation.h
 //      and singleton rejoining                                      singleton_rejoining.h
 //   3. cluster normalization + singleton rejoining, iterated until
 //      the cluster count changes by less than a fraction of N      cluster_normalization.h
-//   4. one elliptical surfel per cluster                            surfel_generation.h
-//   beyond the paper: an exact size or an error bound              cluster_refinement.h,
-//                                                                   surface_error_bound.h
-//   at an exact size, exchanges of clusters for the largest error  max_error_exchange.h,
-//                                                                   surfel_recipe.h
-//   and surfels fitted to the blended surface                       surfel_offset.h
+//   4. one elliptical surfel per cluster                            surfel_generation.h, surfel_recipe.h
+//   size control beyond the paper, one mode a run (SizeControl):
+//      Level: the clustering of step 3 as it is
+//      TargetCount: level search, splits or merges                  cluster_refinement.h
+//                   and exchanges for the largest error             max_error_exchange.h
+//      ErrorBound: splits until every point is within the bound    surface_error_bound.h
+//   surfels fitted to the blended surface                           surfel_offset.h
 //   with narrower blends around creases                             crease_blend.h
 //
 // Usage:
-//   vcg::gaussphere::ResamplingParams param;          // the paper's defaults
+//   vcg::gaussphere::ResamplingParams param;          // the paper's defaults (resampling_params.h)
 //   auto result = vcg::gaussphere::ResamplePointSet(mesh, param, cb);
 //   // result.surfels, result.representative[i] = surfel of input vertex i
-//
-// Defaults. Level 8, k = 16, depth 6 and threshold 6.0 are the paper's. Where the paper is
-// silent the defaults were measured on its own Dragon (437,645 points; paper: 18.3 % and
-// an L2,1 RMS of 0.041 at level 8):
-// - base icosahedron: at equal counts its smaller, rounder triangles give a lower L2,1
-//   error than the octahedron's (dragon, ~21.5 %: 0.0414 against 0.0466);
-// - singletons rejoin a cluster only within the propagation radius d_max / (2 sqrt 3) of
-//   its normal: with the full cone d_max the L2,1 maximum reached 0.49, with the inscribed
-//   radius it is 0.15;
-// - clusters under 8 points are never split (their covariance is noise);
-// - clusters over 32 points are split whatever their shape: on CAD parts the flat faces
-//   otherwise become a few huge surfels whose blend bleeds over the creases (anchor:
-//   Delta*max 0.086 -> 0.045 for 3.5 % more surfels; fandisk 0.059 -> 0.038 for 10 %);
-//   scanned models hardly change (bunny +0.5 %);
-// - beyond the paper, clusters that touch a crease (a neighbour's normal turned by 45 to
-//   120 degrees, crease_points.h) are split above 5 points, or when elongated from 4
-//   points on: wide or edge-long surfels beside a crease round it off in every blend of
-//   the surfels. Measured at equal counts with bench/ (level 8, 16 models), this took
-//   our Delta*max below CGAL's hierarchy clustering and MeshLab's Poisson disk sampling
-//   on the CAD parts where it was above (block 0.099 -> 0.041 against Poisson's 0.067,
-//   and 0.047 at the hierarchy's own count against its 0.051; anchor 0.034 -> 0.023
-//   against 0.025 and 0.026) and lowered the blended L2,1 error on every model. A cap of
-//   8 left block and rocker_arm above CGAL, 4 and 6 did no better than 5. The dragon
-//   gains 0.5 % surfels, which the never-split size of 8 (was 7) gives back;
-// together: dragon 23.5 % (102,653 surfels), L2,1 RMS 0.0405, max 0.150.
-// Normalization stops when a round changes the count by less than convergenceFraction x N
-// (1 %, the paper's rule); on small inputs this may leave a few elongated clusters, and
-// convergenceFraction = 0 runs every round up to maxIterations.
 #ifndef VCG_EXT_GAUSSPHERE_RESAMPLING_H
 #define VCG_EXT_GAUSSPHERE_RESAMPLING_H
 
@@ -74,77 +49,18 @@
 #include "index_propagation.h"
 #include "max_error_exchange.h"
 #include "point_grid.h"
+#include "resampling_params.h"
 #include "singleton_rejoining.h"
 #include "surface_error_bound.h"
 #include "surfel_generation.h"
 #include "surfel_offset.h"
 #include "surfel_recipe.h"
-#include "thread_budget.h"
 #include "usable_points.h"
 
 namespace vcg {
 namespace gaussphere {
 
-struct ResamplingParams
-{
-    int subdivisionLevel = 8;        ///< n: segments per base edge = n - 1 (valid: 2..256)
-    BasePolyhedron base = BasePolyhedron::Icosahedron; ///< see "Defaults" above
-    int neighborCount = 16;          ///< k of the k-NN search (valid: 1..255)
-    int propagationDepth = 6;        ///< depth limit of index propagation; 0 = unlimited
-    PropagationReference reference = PropagationReference::Seed;
-    PropagationOrder order = PropagationOrder::DepthFirst;
-    double normalizationThreshold = 6.0; ///< split clusters with lambda1/lambda2 above it (> 1)
-    int minSplitSize = 8;            ///< clusters smaller than this are never split
-    int maxClusterSize = 32;         ///< clusters with more points are split whatever their shape (0 = off)
-    double creaseAngle = 45;         ///< degrees: normals turned by more mark a crease (0 = no crease limits)
-    int creaseClusterSize = 5;       ///< maxClusterSize of clusters at a crease (0 = off)
-    int creaseMinSplitSize = 4;      ///< minSplitSize of clusters at a crease
-    float creaseBlendScale = 0.65f;  ///< blend width of the surfels around creases (crease_blend.h);
-                                     ///< in (0, 1], 1 = off
-    double weightWidth = -1;         ///< h of the normal weights; < 0: 0.01 x bbox diagonal
-    int maxIterations = 10;          ///< cap on normalization + rejoining rounds
-    double convergenceFraction = 0.01; ///< stop when the count changes by less than this x N
-    double coverageMargin = 0.75;    ///< ellipse growth, in local sample spacings
-    int targetCount = 0;             ///< exact output size (0 = off): see ResamplePointSet
-    double mergeWithin = 1.15;       ///< targetCount: merge down from a level giving at most this x the target
-    int maxErrorExchanges = 16;      ///< targetCount: exchanges of clusters that lower the largest error
-                                     ///< at the same count (max_error_exchange.h; 0 = off); not with
-                                     ///< maxErrorFraction, whose bound sets the count
-    bool fitOffsets = true;          ///< surfels moved along their normals to fit the blended surface
-                                     ///< (surfel_offset.h; with maxErrorFraction, in each round of
-                                     ///< its check, so that the bound holds for the moved surfels)
-    double maxErrorFraction = 0;     ///< bound on each point's distance to its surfel's plane, then
-                                     ///< to the blended surface (surface_error_bound.h), as a fraction
-                                     ///< of the bbox diagonal (0 = off)
-    bool adaptThreads = true;        ///< fewer threads than OpenMP's maximum while other programs keep
-                                     ///< CPUs busy (thread_budget.h); false: always the maximum. The
-                                     ///< output is the same either way
-
-    /// Empty when valid, else a message naming the offending parameter.
-    std::string Validate() const
-    {
-        if (subdivisionLevel < 2 || subdivisionLevel > 256) return "SubdivisionLevel must be between 2 and 256";
-        if (neighborCount < 1 || neighborCount > 255) return "NeighborCount must be between 1 and 255";
-        if (propagationDepth < 0) return "PropagationDepth must be 0 (unlimited) or positive";
-        if (!(normalizationThreshold > 1.0)) return "NormalizationThreshold must be greater than 1";
-        if (maxIterations < 0) return "MaxIterations must not be negative";
-        if (!(weightWidth < 0 || weightWidth > 0)) return "WeightWidth must be positive";
-        if (!(coverageMargin >= 0)) return "CoverageMargin must not be negative";
-        if (!(convergenceFraction >= 0)) return "ConvergenceFraction must not be negative";
-        if (maxClusterSize < 0) return "MaxClusterSize must be 0 (off) or positive";
-        if (!(creaseAngle >= 0 && creaseAngle < 120)) return "CreaseAngle must be between 0 (off) and 120 degrees";
-        if (creaseClusterSize < 0 || creaseClusterSize == 1) return "CreaseClusterSize must be 0 (off) or at least 2";
-        if (creaseMinSplitSize < 0) return "CreaseMinSplitSize must not be negative";
-        if (!(creaseBlendScale > 0 && creaseBlendScale <= 1)) return "CreaseBlendScale must be above 0 and at most 1";
-        if (targetCount < 0) return "TargetCount must not be negative";
-        if (!(mergeWithin >= 1)) return "mergeWithin must be at least 1";
-        if (maxErrorExchanges < 0 || maxErrorExchanges > 100000) return "MaxErrorExchanges must be between 0 (off) and 100000";
-        if (!(maxErrorFraction >= 0 && maxErrorFraction < 1)) return "MaxError must be between 0 (off) and 1";
-        return std::string();
-    }
-};
-
-/// Cap on the projections of every point onto the blended surface for maxErrorFraction; the
+/// Cap on the projections of every point onto the blended surface in ErrorBound mode; the
 /// models of bench/ need at most 5.
 constexpr int kSurfaceBoundRounds = 16;
 
@@ -158,6 +74,8 @@ struct ResamplingStats
     int naiveCount = 0;            ///< clusters after naive sampling and rejoining
     int iterations = 0;            ///< normalization rounds run
     int levelUsed = 0;             ///< Gaussian sphere level of the final clustering
+    SizeControl sizeMode = SizeControl::Level; ///< what set the count (ResamplingParams::SizeMode)
+    int targetCount = 0;           ///< the count asked for (SizeControl::TargetCount), from the count or the percentage
     int levelsTried = 0;           ///< levels clustered while searching for targetCount
     int splitsForTarget = 0;       ///< clusters split to reach targetCount exactly
     int mergesForTarget = 0;       ///< cluster pairs merged to reach a targetCount below level 2's count
@@ -176,13 +94,20 @@ struct ResamplingStats
     int creaseFitsForMaxError = 0; ///< ... surfels at creases fitted by their last step (max_error_exchange.h)
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
-    int threadsUsed = 0;           ///< OpenMP threads the run took, the fewest of its stages
-                                   ///< (ResamplingParams::adaptThreads)
+    int threadsUsed = 0;           ///< OpenMP threads the run could take (the host's setting)
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
     double normalErrorMax = 0;     ///< ... and maximum
     double secondsNeighbors = 0, secondsPropagation = 0, secondsNormalization = 0, secondsRefinement = 0,
            secondsSurfels = 0, secondsExchanges = 0;
+    /// Why a TargetCount run gave another count than asked, or empty when it gave that count.
+    std::string TargetMissReason() const
+    {
+        if (sizeMode != SizeControl::TargetCount || outputCount == targetCount) return std::string();
+        if (outputCount < targetCount && targetCount > inputCount - skippedCount)
+            return "the input has only " + std::to_string(inputCount - skippedCount) + " usable point(s)";
+        return outputCount < targetCount ? "no cluster left to split" : "no neighbouring clusters left to merge";
+    }
     /// The round cap, not a lack of clusters left to split, left points beyond the bound.
     bool SurfaceBoundCapped() const { return pointsAboveErrorBound > 0 && surfaceBoundRounds >= kSurfaceBoundRounds; }
     double TotalSeconds() const
@@ -221,8 +146,7 @@ private:
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-/// values[i] = old values[order[i]], through a fresh buffer swapped in (FlatVector: no zeroing
-/// pass, huge pages).
+/// values[i] = old values[order[i]], through a fresh buffer swapped in (no zeroing pass).
 template <class Vector>
 void Permute(const IndexArray &order, Vector &values)
 {
@@ -276,13 +200,370 @@ inline void Report(vcg::CallBackPos *cb, int percent, const char *what)
     if (cb && !cb(percent, what)) throw ResamplingCancelled();
 }
 
+/// The state of one run, shared by its stages: the usable points at unit scale in Morton order
+/// (`source` maps them back to the mesh's vertices), their neighbour graph, the clusters.
+struct Run
+{
+    const ResamplingParams &param;
+    vcg::CallBackPos *cb;
+    ResamplingStats &stats;
+    StageTimer timer;
+    PointArray points, normals;
+    IndexArray source;
+    NeighborGraph graph;
+    double scale = 1;       ///< unit scale = scale x the model's
+    double diagonal = 0;    ///< of the points, at unit scale
+    double weightWidth = 0; ///< h of the surfel normal weights, at unit scale
+    ClusterNormalizationParams normalization;
+    Clustering clusters;
+
+    Run(const ResamplingParams &p, vcg::CallBackPos *callback, ResamplingStats &s) : param(p), cb(callback), stats(s) {}
+    bool Progress(int percent, const char *what) const { return cb == nullptr || cb(percent, what); }
+    SurfelGenerationParams Generation() const
+    {
+        SurfelGenerationParams generation;
+        generation.weightWidth = weightWidth;
+        generation.coverageMargin = param.tuning.coverageMargin;
+        return generation;
+    }
+    SurfelRecipe Recipe() const
+    {
+        SurfelRecipe recipe;
+        recipe.generation = Generation();
+        recipe.creaseBlendScale = param.tuning.creaseBlendScale;
+        recipe.fitOffsets = param.fitOffsets;
+        recipe.creasePoints = normalization.creasePoints;
+        return recipe;
+    }
+};
+
+/// The usable points of `mesh` at unit scale (usable_points.h).
+template <class MeshType>
+void ReadPoints(const MeshType &mesh, Run &run)
+{
+    ResamplingStats &stats = run.stats;
+    const UsablePointCounts counts = ReadUsablePoints(mesh, run.points, run.normals, run.source);
+    stats.inputCount = counts.Live();
+    stats.skippedPositions = counts.badPosition;
+    stats.skippedNormals = counts.badNormal;
+    stats.skippedCount = counts.badPosition + counts.badNormal;
+    if (counts.usable < 2) throw std::invalid_argument(TooFewPointsMessage(counts));
+    run.scale = UnitScaleOf(BoxDiagonal(run.points));
+    ScalePoints(run.scale, run.points);
+    vcg::Box3f box; // in float, as every length derived from it: exact multiples of the model's
+    for (const auto &p : run.points) box.Add(p);
+    run.diagonal = box.Diag();
+    stats.diagonal = run.diagonal / run.scale;
+    run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
+}
+
+/// Step 1: the points renumbered along the grid's Morton order (points close in space become
+/// close in memory, which makes every later pass cache-friendly; the order is also the seed
+/// order of index propagation), then their k nearest neighbours and crease points.
+inline void FindNeighbors(Run &run)
+{
+    const char *sorting = "Gaussian sphere resampling: sorting the points in space";
+    Report(run.cb, 1, sorting);
+    vcg::CallBackPos *cb = run.cb;
+    std::unique_ptr<PointGrid> grid(
+        new PointGrid(run.points, PointGrid::kPointsPerCell, [cb, sorting]() { Report(cb, 1, sorting); }));
+    const IndexArray &spatial = grid->Order();
+    Report(run.cb, 1, sorting);
+    Permute(spatial, run.points);
+    Permute(spatial, run.normals);
+    Permute(spatial, run.source);
+    grid->PointsRenumberedToOrder();
+    Report(run.cb, 2, "Gaussian sphere resampling: neighbour search");
+    AdaptiveNeighborParams neighborParam;
+    neighborParam.k = run.param.neighborCount;
+    neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(run.param.subdivisionLevel);
+    neighborParam.creaseAngle = run.param.creaseAngle;
+    run.graph = BuildAdaptiveNeighbors(run.points, run.normals, neighborParam, *grid, [&run](double done) {
+        return run.Progress(2 + int(40 * done), "Gaussian sphere resampling: neighbour search");
+    });
+    if (run.graph.Size() != int(run.points.size())) throw ResamplingCancelled();
+
+    const ResamplingTuning &tuning = run.param.tuning;
+    run.normalization.threshold = run.param.normalizationThreshold;
+    run.normalization.minSplitSize = tuning.minSplitSize;
+    run.normalization.maxClusterSize = tuning.maxClusterSize;
+    if (run.param.creaseAngle > 0) {
+        run.normalization.creasePoints = &run.graph.crease;
+        run.normalization.creaseClusterSize = tuning.creaseClusterSize;
+        run.normalization.creaseMinSplitSize = tuning.creaseMinSplitSize;
+    }
+    run.stats.secondsNeighbors = run.timer.Lap();
+}
+
+struct LevelClustering
+{
+    Clustering clusters;
+    int level = 0, naiveCount = 0, iterations = 0;
+    double meanAdaptiveNeighbors = 0;
+};
+
+/// Steps 2 and 3 at one level: naive sampling, then normalization rounds. A report after each
+/// step: at 20 M points a round takes seconds, and a MeshLab user must see it move and can cancel.
+inline LevelClustering ClusterAtLevel(Run &run, int level)
+{
+    const int n = int(run.points.size());
+    LevelClustering r;
+    r.level = level;
+    const GaussianSphere sphere(level, BasePolyhedron::Icosahedron);
+    const double inscribedRadius = sphere.PaperMaxEdgeLength() / (2.0 * std::sqrt(3.0));
+    RestrictToCone(run.points, run.normals, sphere.PaperMaxEdgeLength(), run.graph);
+    long long kept = 0;
+    for (int i = 0; i < n; ++i) kept += run.graph.count[i];
+    r.meanAdaptiveNeighbors = double(kept) / n;
+    IndexArray triangle(n);
+    const int lookupBlock = 4096;
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < n; b += lookupBlock)
+        sphere.TrianglesOf(&run.normals[b], std::min(lookupBlock, n - b), &triangle[b]);
+    Clustering &c = r.clusters;
+    c.label.assign(n, 0);
+    IndexPropagationParams propagation;
+    propagation.maxDepth = run.param.propagationDepth;
+    propagation.inscribedRadius = inscribedRadius;
+    if (!PropagateIndices(run.normals, triangle, run.graph, IndexArray(), propagation, c, [&run](double done) {
+            return run.Progress(45 + int(10 * done), "Gaussian sphere resampling: index propagation");
+        }))
+        throw ResamplingCancelled();
+    RejoinSingletons(run.normals, run.graph, inscribedRadius, c);
+    c.Compact();
+    r.naiveCount = c.clusterCount;
+    run.stats.secondsPropagation += run.timer.Lap();
+
+    int percent = 56;
+    const auto report = [&]() {
+        percent = std::min(75, percent + 2);
+        Report(run.cb, percent, "Gaussian sphere resampling: cluster normalization");
+    };
+    report();
+    const double settled = run.param.tuning.convergenceFraction * n;
+    for (int round = 0; round < run.param.tuning.maxIterations; ++round) {
+        const int before = c.clusterCount;
+        SplitElongatedClusters(run.points, run.normalization, c);
+        report();
+        RejoinSingletons(run.normals, run.graph, inscribedRadius, c);
+        report();
+        c.Compact();
+        ++r.iterations;
+        if (std::abs(c.clusterCount - before) < settled) break;
+    }
+    ++run.stats.levelsTried;
+    run.stats.secondsNormalization += run.timer.Lap();
+    return r;
+}
+
+/// The clustering a run continues from: its clusters and the figures of its level.
+inline void Adopt(LevelClustering &&chosen, Run &run)
+{
+    run.clusters = std::move(chosen.clusters);
+    run.stats.levelUsed = chosen.level;
+    run.stats.naiveCount = chosen.naiveCount;
+    run.stats.iterations = chosen.iterations;
+    run.stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
+}
+
+/// The count grows with the level: the finest level in [2, 256] whose count stays at or below
+/// `target` (doubling from the parameter's level, then bisection), whose clusters splitting
+/// brings up to the target; or, when the next level gives at most tuning.mergeWithin times the
+/// target, or even level 2 gives more, that level, whose clusters merging brings down to it:
+/// merging a finer level's most similar neighbours keeps its small clusters at creases.
+inline LevelClustering SearchLevel(Run &run, int target)
+{
+    const int maxLevel = 256;
+    int good = 0, bad = 0; // finest level known to fit, coarsest known not to
+    LevelClustering fitting, coarsestTooMany;
+    const auto consider = [&](LevelClustering &&r) {
+        if (r.clusters.clusterCount <= target) {
+            if (r.level > good) { good = r.level; fitting = std::move(r); }
+        } else if (!bad || r.level < bad) {
+            bad = r.level;
+            coarsestTooMany = std::move(r);
+        }
+    };
+    consider(ClusterAtLevel(run, run.param.subdivisionLevel));
+    while (true) {
+        int next;
+        if (good && bad) { if (bad - good <= 1) break; next = (good + bad) / 2; }
+        else if (good) { if (good == maxLevel) break; next = std::min(maxLevel, 2 * good); }
+        else { if (bad == 2) break; next = std::max(2, bad / 2); }
+        Report(run.cb, std::min(75, 45 + 4 * run.stats.levelsTried), "Gaussian sphere resampling: searching the level");
+        consider(ClusterAtLevel(run, next));
+    }
+    const bool mergeDown = bad && coarsestTooMany.clusters.clusterCount <= run.param.tuning.mergeWithin * target;
+    return std::move(good && !mergeDown ? fitting : coarsestTooMany);
+}
+
+/// The surfels whose blend is narrowed, read off the surfels (counted where they were made).
+inline int CountNarrowed(const std::vector<Surfel> &surfels)
+{
+    return int(std::count_if(surfels.begin(), surfels.end(), [](const Surfel &s) { return s.blendScale < 1; }));
+}
+
+/// SizeControl::Level: one surfel per cluster of the parameter's level.
+inline std::vector<Surfel> ResampleAtLevel(Run &run)
+{
+    Adopt(ClusterAtLevel(run, run.param.subdivisionLevel), run);
+    run.stats.secondsRefinement = run.timer.Lap();
+    Report(run.cb, 90, "Gaussian sphere resampling: surfels");
+    const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
+    std::vector<Surfel> surfels = maker.MakeFitted(run.clusters, [&run]() {
+        Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
+    });
+    run.stats.surfelsNarrowedAtCreases = CountNarrowed(surfels);
+    return surfels;
+}
+
+/// Merges the most similar neighbouring clusters down to `target`; returns the merged clusters'
+/// links, which the exchanges read. From here on the surfels' fit reads the graph's first
+/// kOffsetNeighbors slots only: the rest goes before the merge's queue exists (32 B a point at k = 16).
+inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target)
+{
+    const auto merging = [&run](double done) {
+        return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
+    };
+    const std::unique_ptr<MergeBasis> basis = BuildMergeBasis(run.points, run.normals, run.graph, run.clusters,
+                                                              run.weightWidth,
+                                                              [&merging](double done) { return merging(0.2 * done); });
+    if (!basis) throw ResamplingCancelled();
+    KeepFirstSlots(run.graph, kOffsetNeighbors);
+    run.stats.mergesForTarget =
+        MergeToCount(*basis, target, run.clusters, [&merging](double done) { return merging(0.2 + 0.8 * done); });
+    if (run.stats.mergesForTarget == kRefinementCancelled) throw ResamplingCancelled();
+    return std::move(basis->adjacent);
+}
+
+/// The exchanges of clusters for the largest error (max_error_exchange.h); `surfels` receives
+/// the kept set.
+inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std::vector<int>> *mergedLinks,
+                             std::vector<Surfel> &surfels)
+{
+    MaxErrorExchangeParams exchangeParam;
+    exchangeParam.maxRounds = run.param.maxErrorExchanges;
+    const MaxErrorExchangeResult exchange = ExchangeForMaxError(
+        run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
+        [&run](int round) {
+            return run.Progress(90 + 9 * round / run.param.maxErrorExchanges,
+                                "Gaussian sphere resampling: exchanges for the largest error");
+        },
+        mergedLinks);
+    if (exchange.cancelled) throw ResamplingCancelled();
+    ResamplingStats &stats = run.stats;
+    stats.exchangesForMaxError = exchange.exchanges;
+    stats.exchangeTrials = exchange.trials;
+    stats.creaseFitsForMaxError = exchange.creaseFits;
+    stats.exchangeMaxBefore = run.diagonal > 0 ? exchange.maxBefore / run.diagonal : 0.0;
+    stats.exchangeMaxAfter = run.diagonal > 0 ? exchange.maxAfter / run.diagonal : 0.0;
+    stats.secondsExchanges = run.timer.Lap();
+}
+
+/// SizeControl::TargetCount: the level found by SearchLevel, its clusters split or merged to
+/// the count exactly, then exchanges of clusters that lower the largest error at that count.
+inline std::vector<Surfel> ResampleToCount(Run &run)
+{
+    ResamplingStats &stats = run.stats;
+    const int target = stats.targetCount = run.param.TargetFor(int(run.points.size()));
+    Adopt(SearchLevel(run, target), run);
+    if (target > run.clusters.clusterCount) {
+        Report(run.cb, 80, "Gaussian sphere resampling: refining clusters");
+        ClusterRefiner refiner(run.points, run.normals, run.clusters, 1.0 / (run.weightWidth * run.weightWidth));
+        stats.splitsForTarget = refiner.SplitToCount(target, [&run](double done) {
+            return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: splitting clusters");
+        });
+        if (stats.splitsForTarget == kRefinementCancelled) throw ResamplingCancelled();
+    }
+    // Reads the crease narrowing from every slot of the graph: made before merging cuts it.
+    const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
+    std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
+    const bool merged = run.clusters.clusterCount > target;
+    if (merged) mergedLinks = MergeClustersToCount(run, target);
+    stats.secondsRefinement = run.timer.Lap();
+    Report(run.cb, 90, "Gaussian sphere resampling: surfels");
+    std::vector<Surfel> surfels;
+    if (run.param.maxErrorExchanges > 0) {
+        ExchangeClusters(run, maker, merged ? &mergedLinks : nullptr, surfels);
+    } else {
+        surfels = maker.MakeFitted(run.clusters, [&run]() {
+            Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
+        });
+    }
+    stats.surfelsNarrowedAtCreases = CountNarrowed(surfels); // of the kept set, not of the exchanges' trials
+    return surfels;
+}
+/// SizeControl::ErrorBound: the clusters of the parameter's level split until every point lies
+/// within the bound of its own surfel's plane, then of the surfels' blended surface, whose last
+/// round makes the surfels (narrowed around creases and fitted in every round, so that the bound
+/// holds for the surfels returned).
+inline std::vector<Surfel> ResampleToErrorBound(Run &run)
+{
+    ResamplingStats &stats = run.stats;
+    Adopt(ClusterAtLevel(run, run.param.subdivisionLevel), run);
+    Report(run.cb, 80, "Gaussian sphere resampling: refining clusters");
+    ClusterRefiner refiner(run.points, run.normals, run.clusters, 1.0 / (run.weightWidth * run.weightWidth));
+    const double bound = run.param.maxErrorFraction * run.diagonal;
+    stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
+    SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
+        run.points, run.normals, run.graph.spacing, run.Generation(), bound, run.diagonal, kSurfaceBoundRounds, refiner,
+        run.clusters,
+        [&run](int round, double) {
+            return run.Progress(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
+        },
+        [&](std::vector<Surfel> &surfels) {
+            stats.surfelsNarrowedAtCreases =
+                NarrowBlendsAroundCreases(run.graph, run.clusters, run.param.tuning.creaseBlendScale, surfels);
+            if (run.param.fitOffsets)
+                FitSurfelOffsets(run.points, run.normals, run.graph, run.clusters, run.normalization.creasePoints,
+                                 surfels, bound);
+        });
+    if (surface.cancelled) throw ResamplingCancelled();
+    stats.splitsForSurfaceBound = surface.splits;
+    stats.narrowingsForSurfaceBound = surface.narrowings;
+    stats.surfaceBoundRounds = surface.rounds;
+    stats.pointsAboveErrorBound = surface.pointsAbove;
+    stats.surfaceErrorMax = run.diagonal > 0 ? surface.maxDistance / run.diagonal : 0.0;
+    stats.secondsRefinement = run.timer.Lap();
+    Report(run.cb, 90, "Gaussian sphere resampling: surfels");
+    return std::move(surface.surfels);
+}
+
+/// The figures read off the final surfels and clusters, and the surfels back at the model's scale.
+inline void Finish(Run &run, ResamplingResult &result)
+{
+    ResamplingStats &stats = run.stats;
+    const int n = int(run.points.size());
+    for (const Surfel &s : result.surfels) {
+        stats.surfelsFitted += s.fitOffset != 0;
+        if (run.diagonal > 0)
+            stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / run.diagonal);
+    }
+    FlatVector<double> normalError(n);
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+        result.representative[run.source[i]] = run.clusters.label[i];
+        normalError[i] = (run.normals[i] - result.surfels[run.clusters.label[i]].normal).Norm();
+    }
+    double sumSquares = 0; // summed in point order: the same figure for any thread count
+    for (double e : normalError) {
+        sumSquares += e * e;
+        stats.normalErrorMax = std::max(stats.normalErrorMax, e);
+    }
+    stats.normalErrorRms = std::sqrt(sumSquares / n);
+    if (!ScaleSurfels(1.0 / run.scale, result.surfels)) throw std::overflow_error(OverflowMessage(stats.diagonal));
+    stats.outputCount = int(result.surfels.size());
+    stats.secondsSurfels = run.timer.Lap();
+}
+
 } // namespace detail
 
 /// Resamples the oriented point set `mesh` (vertices with normals; faces are ignored).
 /// Preconditions: param.Validate() is empty. Vertices whose normal is zero or not finite,
 /// or whose position is not finite, are skipped and counted (stats.skippedPositions,
 /// stats.skippedNormals). The run works at a unit scale (usable_points.h): a model scaled by a
-/// power of two gives the same surfels scaled by it, and any scale the same count.
+/// power of two gives the same surfels scaled by it, and any scale the same count. The number
+/// of OpenMP threads is the caller's (the output is the same for any).
 /// Postconditions: one surfel per cluster; every kept vertex belongs to exactly one
 /// cluster; surfel normals have unit length; ellipse axes are tangent and non-zero; every
 /// surfel value is finite.
@@ -294,302 +575,21 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 {
     const std::string invalid = param.Validate();
     if (!invalid.empty()) throw std::invalid_argument(invalid);
-    const ReuseLargeBuffers reuse; // first: it outlives every buffer of the run
     ResamplingResult result;
-    ResamplingStats &stats = result.stats;
-    RunThreads threads(param.adaptThreads);
-    detail::StageTimer timer;
-    detail::Report(cb, 0, "Gaussian sphere resampling: reading points");
-
-    // Usable points, as flat float arrays; `source` maps them back to vertex indices.
-    PointArray points, normals;
-    IndexArray source;
+    result.stats.sizeMode = param.SizeMode();
+    result.stats.threadsUsed = omp_get_max_threads();
     result.representative.assign(mesh.vert.size(), -1);
-    const UsablePointCounts counts = ReadUsablePoints(mesh, points, normals, source);
-    stats.inputCount = counts.Live();
-    stats.skippedPositions = counts.badPosition;
-    stats.skippedNormals = counts.badNormal;
-    stats.skippedCount = counts.badPosition + counts.badNormal;
-    const int n = counts.usable;
-    if (n < 2)
-        throw std::invalid_argument(detail::TooFewPointsMessage(counts));
-
-    // The run works at a unit scale (usable_points.h): `diagonal` and every length below are in
-    // its units, the surfels are scaled back at the end.
-    const double scale = UnitScaleOf(BoxDiagonal(points));
-    ScalePoints(scale, points);
-    vcg::Box3f box;
-    for (const auto &p : points) box.Add(p);
-    const double diagonal = box.Diag();
-    stats.diagonal = diagonal / scale;
-    const double weightWidth = param.weightWidth > 0 ? param.weightWidth * scale : 0.01 * diagonal;
-
-    // 1. Neighbours: one k-NN search, restricted to the cone of each level clustered.
-    const char *sorting = "Gaussian sphere resampling: sorting the points in space";
-    detail::Report(cb, 1, sorting);
-    // Renumber the points along the grid's Morton order: points close in space become
-    // close in memory, which makes every later pass cache-friendly (1.5-1.8x faster on
-    // randomly ordered input).
-    // The grid lives for the neighbour search only (8 B per point: cells and order); after the
-    // renumbering its order is the identity, which is also the seed order of index propagation.
-    std::unique_ptr<PointGrid> grid(
-        new PointGrid(points, PointGrid::kPointsPerCell, [cb, sorting]() { detail::Report(cb, 1, sorting); }));
-    const IndexArray &spatial = grid->Order();
-    detail::Report(cb, 1, sorting);
-    detail::Permute(spatial, points);
-    detail::Permute(spatial, normals);
-    detail::Permute(spatial, source);
-    grid->PointsRenumberedToOrder();
-    detail::Report(cb, 2, "Gaussian sphere resampling: neighbour search");
-    AdaptiveNeighborParams neighborParam;
-    neighborParam.k = param.neighborCount;
-    neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(param.subdivisionLevel);
-    neighborParam.creaseAngle = param.creaseAngle;
-    NeighborGraph graph = BuildAdaptiveNeighbors(points, normals, neighborParam, *grid, [cb](double done) {
-        return cb == nullptr || cb(2 + int(40 * done), "Gaussian sphere resampling: neighbour search");
-    });
-    grid.reset();
-    if (graph.Size() != n) throw ResamplingCancelled();
-    threads.Recheck();
-    stats.secondsNeighbors = timer.Lap();
+    detail::Run run(param, cb, result.stats);
+    detail::Report(cb, 0, "Gaussian sphere resampling: reading points");
+    detail::ReadPoints(mesh, run);
+    detail::FindNeighbors(run);
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
-
-    // 2-3. Naive sampling and optimized sampling at one level.
-    ClusterNormalizationParams normalization;
-    normalization.threshold = param.normalizationThreshold;
-    normalization.minSplitSize = param.minSplitSize;
-    normalization.maxClusterSize = param.maxClusterSize;
-    if (param.creaseAngle > 0) {
-        normalization.creasePoints = &graph.crease;
-        normalization.creaseClusterSize = param.creaseClusterSize;
-        normalization.creaseMinSplitSize = param.creaseMinSplitSize;
+    switch (result.stats.sizeMode) {
+    case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
+    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run); break;
+    case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
     }
-    struct LevelResult
-    {
-        Clustering clusters;
-        int level = 0, naiveCount = 0, iterations = 0;
-        double meanAdaptiveNeighbors = 0;
-    };
-    auto clusterAtLevel = [&](int level) {
-        threads.Recheck();
-        LevelResult r;
-        r.level = level;
-        const GaussianSphere sphere(level, param.base);
-        const double dMax = sphere.PaperMaxEdgeLength();
-        const double inscribedRadius = dMax / (2.0 * std::sqrt(3.0));
-        RestrictToCone(points, normals, dMax, graph);
-        long long kept = 0;
-        for (int i = 0; i < n; ++i) kept += graph.count[i];
-        r.meanAdaptiveNeighbors = double(kept) / n;
-        IndexArray triangle(n);
-        const int lookupBlock = 4096;
-#pragma omp parallel for schedule(static)
-        for (int b = 0; b < n; b += lookupBlock)
-            sphere.TrianglesOf(&normals[b], std::min(lookupBlock, n - b), &triangle[b]);
-        Clustering &c = r.clusters;
-        c.label.assign(n, 0);
-        IndexPropagationParams propagation;
-        propagation.maxDepth = param.propagationDepth;
-        propagation.inscribedRadius = inscribedRadius;
-        propagation.reference = param.reference;
-        propagation.order = param.order;
-        const bool labelled = PropagateIndices(normals, triangle, graph, IndexArray(), propagation, c, [cb](double done) {
-            return cb == nullptr || cb(45 + int(10 * done), "Gaussian sphere resampling: index propagation");
-        });
-        if (!labelled) throw ResamplingCancelled();
-        RejoinSingletons(normals, graph, inscribedRadius, c);
-        c.Compact();
-        r.naiveCount = c.clusterCount;
-        stats.secondsPropagation += timer.Lap();
-
-        // A report after each step: at 20 M points a round takes seconds, and a MeshLab user
-        // must be able to see it move and to cancel it.
-        int percent = 56;
-        auto reportNormalization = [&]() {
-            percent = std::min(75, percent + 2);
-            detail::Report(cb, percent, "Gaussian sphere resampling: cluster normalization");
-        };
-        reportNormalization();
-        const double settled = param.convergenceFraction * n;
-        for (int round = 0; round < param.maxIterations; ++round) {
-            const int before = c.clusterCount;
-            SplitElongatedClusters(points, normalization, c);
-            reportNormalization();
-            RejoinSingletons(normals, graph, inscribedRadius, c);
-            reportNormalization();
-            c.Compact();
-            ++r.iterations;
-            if (std::abs(c.clusterCount - before) < settled) break;
-        }
-        ++stats.levelsTried;
-        stats.secondsNormalization += timer.Lap();
-        return r;
-    };
-
-    LevelResult chosen = clusterAtLevel(param.subdivisionLevel);
-    if (param.targetCount > 0) {
-        // The count grows with the level: find the finest level in [2, 256] whose count
-        // stays at or below the target (doubling, then bisection); splitting then adds the
-        // rest. If the next level gives at most mergeWithin times the target, or even level
-        // 2 gives more, that level's clusters are merged down to the target instead.
-        const int maxLevel = 256;
-        int good = 0, bad = 0; // finest level known to fit, coarsest known not to
-        LevelResult fitting, coarsestTooMany;
-        auto consider = [&](LevelResult &&r) {
-            if (r.clusters.clusterCount <= param.targetCount) {
-                if (r.level > good) { good = r.level; fitting = std::move(r); }
-            } else if (!bad || r.level < bad) {
-                bad = r.level;
-                coarsestTooMany = std::move(r);
-            }
-        };
-        consider(std::move(chosen));
-        while (true) {
-            int next;
-            if (good && bad) { if (bad - good <= 1) break; next = (good + bad) / 2; }
-            else if (good) { if (good == maxLevel) break; next = std::min(maxLevel, 2 * good); }
-            else { if (bad == 2) break; next = std::max(2, bad / 2); }
-            detail::Report(cb, std::min(75, 45 + 4 * stats.levelsTried), "Gaussian sphere resampling: searching the level");
-            consider(clusterAtLevel(next));
-        }
-        // Just above the target, merging the finer level's most similar neighbours keeps its
-        // small clusters at creases, where splitting the coarser level's would not: at CGAL
-        // hierarchy's counts (bench/) Delta*max on rocker_arm 0.0077 -> 0.0053, block 0.047 ->
-        // 0.041, casting 0.023 -> 0.021.
-        const bool mergeDown = bad && coarsestTooMany.clusters.clusterCount <= param.mergeWithin * param.targetCount;
-        chosen = std::move(good && !mergeDown ? fitting : coarsestTooMany);
-    }
-    Clustering &clusters = chosen.clusters;
-    stats.levelUsed = chosen.level;
-    stats.naiveCount = chosen.naiveCount;
-    stats.iterations = chosen.iterations;
-    stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
-
-    // Refinements beyond the paper: own-plane error bound, exact size, then the error bound on
-    // the blended surface, whose last round already made the final surfels.
-    const double invH2 = 1.0 / (weightWidth * weightWidth);
-    SurfelGenerationParams surfelParam;
-    surfelParam.weightWidth = weightWidth;
-    surfelParam.coverageMargin = param.coverageMargin;
-    if (param.maxErrorFraction > 0 || param.targetCount > clusters.clusterCount) {
-        detail::Report(cb, 80, "Gaussian sphere resampling: refining clusters");
-        ClusterRefiner refiner(points, normals, clusters, invH2);
-        const double bound = param.maxErrorFraction * diagonal;
-        if (param.maxErrorFraction > 0) stats.splitsForErrorBound = refiner.SplitToErrorBound(bound);
-        if (param.targetCount > 0) {
-            stats.splitsForTarget = refiner.SplitToCount(param.targetCount, [cb](double done) {
-                return cb == nullptr || cb(80 + int(9 * done), "Gaussian sphere resampling: splitting clusters");
-            });
-            if (stats.splitsForTarget == kRefinementCancelled) throw ResamplingCancelled();
-        }
-        if (param.maxErrorFraction > 0) {
-            // Last, so that its figures describe the final clusters; the target's splits may
-            // have moved a half's plane away from a member: the own planes are checked again.
-            if (stats.splitsForTarget > 0) stats.splitsForErrorBound += refiner.SplitToErrorBound(bound);
-            SurfaceErrorBoundResult surface = SplitToSurfaceErrorBound(
-                points, normals, graph.spacing, surfelParam, bound, diagonal, kSurfaceBoundRounds, refiner, clusters,
-                [cb](int round, double) {
-                    return cb == nullptr ||
-                           cb(std::min(89, 80 + round), "Gaussian sphere resampling: error bound on the surface");
-                },
-                [&](std::vector<Surfel> &surfels) {
-                    stats.surfelsNarrowedAtCreases = NarrowBlendsAroundCreases(graph, clusters, param.creaseBlendScale, surfels);
-                    if (param.fitOffsets)
-                        FitSurfelOffsets(points, normals, graph, clusters, normalization.creasePoints, surfels, bound);
-                });
-            if (surface.cancelled) throw ResamplingCancelled();
-            stats.splitsForSurfaceBound = surface.splits;
-            stats.narrowingsForSurfaceBound = surface.narrowings;
-            stats.surfaceBoundRounds = surface.rounds;
-            stats.pointsAboveErrorBound = surface.pointsAbove;
-            stats.surfaceErrorMax = diagonal > 0 ? surface.maxDistance / diagonal : 0.0;
-            result.surfels = std::move(surface.surfels);
-        }
-    }
-    threads.Recheck();
-    SurfelRecipe recipe;
-    recipe.generation = surfelParam;
-    recipe.creaseBlendScale = param.creaseBlendScale;
-    recipe.fitOffsets = param.fitOffsets;
-    recipe.creasePoints = normalization.creasePoints;
-    // Takes the crease narrowing from every slot of the graph: made before merging cuts it.
-    std::unique_ptr<const SurfelMaker> maker;
-    if (result.surfels.empty()) maker.reset(new SurfelMaker(points, normals, graph, recipe));
-    std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
-    bool merged = false;                       // and then the graph holds the fit's slots only
-    if (param.targetCount > 0 && clusters.clusterCount > param.targetCount && param.maxErrorFraction <= 0) {
-        const auto merging = [cb](double done) {
-            return cb == nullptr || cb(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
-        };
-        const std::unique_ptr<MergeBasis> basis =
-            BuildMergeBasis(points, normals, graph, clusters, weightWidth, [&merging](double done) { return merging(0.2 * done); });
-        if (!basis) throw ResamplingCancelled();
-        // From here on the surfels' fit reads the graph's first kOffsetNeighbors slots only, and the
-        // exchanges take the links from the merge: the rest goes before the merge's queue exists
-        // (32 B a point at k = 16).
-        KeepFirstSlots(graph, kOffsetNeighbors);
-        stats.mergesForTarget = MergeToCount(*basis, param.targetCount, clusters,
-                                             [&merging](double done) { return merging(0.2 + 0.8 * done); });
-        if (stats.mergesForTarget == kRefinementCancelled) throw ResamplingCancelled();
-        mergedLinks.swap(basis->adjacent);
-        merged = true;
-    }
-    stats.secondsRefinement = timer.Lap();
-
-    // 4. Surfels.
-    threads.Recheck();
-    detail::Report(cb, 90, "Gaussian sphere resampling: surfels");
-    if (result.surfels.empty()) {
-        if (param.targetCount > 0 && param.maxErrorExchanges > 0) {
-            MaxErrorExchangeParams exchangeParam;
-            exchangeParam.maxRounds = param.maxErrorExchanges;
-            const MaxErrorExchangeResult exchange = ExchangeForMaxError(
-                points, normals, graph, weightWidth, diagonal, exchangeParam, clusters, *maker, result.surfels,
-                [cb, &param](int round) {
-                    return cb == nullptr ||
-                           cb(90 + 9 * round / param.maxErrorExchanges, "Gaussian sphere resampling: exchanges for the largest error");
-                },
-                merged ? &mergedLinks : nullptr);
-            if (exchange.cancelled) throw ResamplingCancelled();
-            stats.exchangesForMaxError = exchange.exchanges;
-            stats.exchangeTrials = exchange.trials;
-            stats.creaseFitsForMaxError = exchange.creaseFits;
-            stats.exchangeMaxBefore = diagonal > 0 ? exchange.maxBefore / diagonal : 0.0;
-            stats.exchangeMaxAfter = diagonal > 0 ? exchange.maxAfter / diagonal : 0.0;
-            stats.secondsExchanges = timer.Lap();
-        } else {
-            result.surfels = maker->MakeFitted(clusters, [cb]() {
-                detail::Report(cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
-            });
-        }
-        // Read off the surfels: the exchange made many sets, the figures describe the kept one.
-        // (With maxErrorFraction blend scales below 1 also come from the bound: counted there.)
-        stats.surfelsNarrowedAtCreases = 0;
-        for (const Surfel &s : result.surfels) stats.surfelsNarrowedAtCreases += s.blendScale < 1;
-    }
-    // Whichever path fitted them, the moves are in the surfels.
-    for (const Surfel &s : result.surfels) {
-        stats.surfelsFitted += s.fitOffset != 0;
-        if (diagonal > 0)
-            stats.largestFitMove = std::max(stats.largestFitMove, std::abs(double(s.fitOffset)) / diagonal);
-    }
-    FlatVector<double> normalError(n);
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i) {
-        result.representative[source[i]] = clusters.label[i];
-        normalError[i] = (normals[i] - result.surfels[clusters.label[i]].normal).Norm();
-    }
-    double sumSquares = 0; // summed in point order: the same figure for any thread count
-    for (double e : normalError) {
-        sumSquares += e * e;
-        stats.normalErrorMax = std::max(stats.normalErrorMax, e);
-    }
-    stats.normalErrorRms = std::sqrt(sumSquares / n);
-    if (!detail::ScaleSurfels(1.0 / scale, result.surfels))
-        throw std::overflow_error(detail::OverflowMessage(stats.diagonal));
-    stats.outputCount = int(result.surfels.size());
-    stats.threadsUsed = threads.Fewest();
-    stats.secondsSurfels = timer.Lap();
+    detail::Finish(run, result);
     detail::Report(cb, 100, "Gaussian sphere resampling: done");
     return result;
 }

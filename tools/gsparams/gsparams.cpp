@@ -1,0 +1,124 @@
+// gsparams: what is made from the parameter table (vcg_ext/gaussphere/resampling_params.h)
+// outside the code, so that it cannot drift from it; tests compare its output with the files.
+//
+//   gsparams readme       the README's parameter tables (markdown)
+//   gsparams scripts DIR  the shipped .mlx scripts of the MeshLab filter, into DIR
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <vcg_ext/gaussphere/resampling_params.h>
+
+using namespace vcg::gaussphere;
+
+namespace {
+
+/// A shipped script: its file name, what it is for, and the values it sets apart from the defaults.
+struct ShippedScript
+{
+    const char *file;
+    const char *purpose;
+    std::vector<std::pair<const char *, const char *>> values;
+};
+
+const std::vector<ShippedScript> &ShippedScripts()
+{
+    static const std::vector<ShippedScript> scripts = {
+        {"resample_level8.mlx", "the paper's defaults (level 8)", {}},
+        {"resample_level16.mlx", "a finer Gaussian sphere: more surfels, lower error", {{"SubdivisionLevel", "16"}}},
+        {"resample_level24.mlx", "finer still", {{"SubdivisionLevel", "24"}}},
+        {"resample_10_percent.mlx", "exactly 10 % of the input points", {{"TargetPercentage", "10"}}},
+        {"resample_max_error.mlx", "an error bound of 0.001 of the bounding-box diagonal", {{"MaxError", "0.001"}}},
+        {"resample_colorize.mlx", "level 8, the input coloured by cluster", {{"ColorizeClusters", "true"}}},
+        {"resample_level8_nofit.mlx", "level 8, surfels at their cluster centroids (the paper)", {{"FitOffsets", "false"}}},
+    };
+    return scripts;
+}
+
+std::string Number(double v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+std::string DefaultText(const ParameterSpec &spec)
+{
+    if (spec.kind == ParameterKind::Bool) return spec.defaultValue != 0 ? "true" : "false";
+    if (std::strcmp(spec.name, "WeightWidth") == 0) return "0 (1 % of the diagonal)";
+    return Number(spec.defaultValue);
+}
+
+void PrintTable(ParameterAudience audience)
+{
+    std::printf("| name | `gsresample` | default | valid | meaning |\n|---|---|---|---|---|\n");
+    for (const ParameterSpec &spec : ParameterTable()) {
+        if (spec.audience != audience) continue;
+        const std::string option = spec.option ? std::string("`") + spec.option + "`" : "";
+        std::printf("| `%s` | %s | %s | %s | %s |\n", spec.name, option.c_str(), DefaultText(spec).c_str(),
+                    spec.RangeText().c_str(), spec.help);
+    }
+}
+
+void PrintReadme()
+{
+    PrintTable(ParameterAudience::Everyone);
+    std::printf("\nFor experts and for reproducing the paper, `gsresample` also takes (the MeshLab filter uses "
+                "the defaults):\n\n");
+    PrintTable(ParameterAudience::Expert);
+    std::printf("\nShipped scripts (`sample_data/`, made by `gsparams scripts`):\n\n| script | what |\n|---|---|\n");
+    for (const ShippedScript &script : ShippedScripts()) std::printf("| `%s` | %s |\n", script.file, script.purpose);
+}
+
+/// The script's value of `spec`: its own, else the default, as MeshLab writes it.
+std::string ScriptValue(const ShippedScript &script, const ParameterSpec &spec)
+{
+    for (const auto &value : script.values)
+        if (std::strcmp(value.first, spec.name) == 0) return value.second;
+    return spec.kind == ParameterKind::Bool ? DefaultText(spec) : Number(spec.defaultValue);
+}
+
+bool WriteScripts(const std::string &folder)
+{
+    for (const ShippedScript &script : ShippedScripts()) {
+        for (const auto &value : script.values) {
+            if (FindParameter(value.first) == nullptr) {
+                std::fprintf(stderr, "gsparams: %s sets %s, which the table does not have\n", script.file, value.first);
+                return false;
+            }
+        }
+        const std::string path = folder + "/" + script.file;
+        FILE *file = std::fopen(path.c_str(), "w");
+        if (file == nullptr) {
+            std::fprintf(stderr, "gsparams: cannot write %s\n", path.c_str());
+            return false;
+        }
+        // MeshLab 2020.09's meshlabserver needs every parameter of the filter listed.
+        std::fprintf(file, "<!DOCTYPE FilterScript>\n<FilterScript>\n"
+                           " <filter name=\"Gaussian Sphere Feature-Sensitive Resampling\">\n");
+        for (const ParameterSpec &spec : ParameterTable()) {
+            if (spec.audience != ParameterAudience::Everyone) continue;
+            const char *type = spec.kind == ParameterKind::Int ? "RichInt"
+                             : spec.kind == ParameterKind::Float ? "RichFloat" : "RichBool";
+            std::fprintf(file, "  <Param type=\"%s\" value=\"%s\" name=\"%s\"/>\n", type,
+                         ScriptValue(script, spec).c_str(), spec.name);
+        }
+        std::fprintf(file, " </filter>\n</FilterScript>\n");
+        if (std::fclose(file) != 0) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && std::strcmp(argv[1], "readme") == 0) {
+        PrintReadme();
+        return 0;
+    }
+    if (argc == 3 && std::strcmp(argv[1], "scripts") == 0) return WriteScripts(argv[2]) ? 0 : 1;
+    std::fprintf(stderr, "usage: gsparams readme | gsparams scripts DIR\n");
+    return 2;
+}

@@ -1,0 +1,221 @@
+// The resampler's parameters: the struct ResamplePointSet reads, and the one table that
+// describes each of them (name, option, range, default, help). The MeshLab dialog, gsresample's
+// options and --help, the README's parameter table and the shipped .mlx scripts are all made
+// from the table (tools/gsparams prints the README table and the scripts; tests compare).
+#ifndef VCG_EXT_GAUSSPHERE_RESAMPLING_PARAMS_H
+#define VCG_EXT_GAUSSPHERE_RESAMPLING_PARAMS_H
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace vcg {
+namespace gaussphere {
+
+/// What sets the number of surfels: one of three, chosen by ResamplingParams::SizeMode().
+enum class SizeControl
+{
+    Level,       ///< the Gaussian sphere level alone (the paper)
+    TargetCount, ///< an exact count: the level found by search, then split or merged to it
+    ErrorBound   ///< as many surfels as the bound needs
+};
+
+/// Tuning of the stages where the paper is silent. Not parameters a user sets: each value is
+/// the one docs/algorithm.md justifies; tests vary them to check the stages they steer.
+struct ResamplingTuning
+{
+    int minSplitSize = 8;          ///< clusters smaller than this are never split: their covariance is noise
+    int maxClusterSize = 32;       ///< larger clusters are split whatever their shape, so that flat faces do not
+                                   ///< become a few huge surfels whose blend bleeds over creases (0 = off)
+    int creaseClusterSize = 5;     ///< maxClusterSize of clusters at a crease: wide surfels round edges off (0 = off)
+    int creaseMinSplitSize = 4;    ///< minSplitSize of clusters at a crease
+    float creaseBlendScale = 0.65f; ///< blend width of the surfels around creases, in (0, 1] (crease_blend.h)
+    int maxIterations = 10;        ///< cap on the rounds of normalization and rejoining
+    double convergenceFraction = 0.01; ///< rounds stop when the count changes by less than this x N (the paper's rule)
+    double coverageMargin = 0.75;  ///< ellipse growth, in local sample spacings, so that neighbours overlap
+    double mergeWithin = 1.15;     ///< TargetCount: merge down from a level giving at most this x the target
+
+    /// Empty when valid, else a message naming the field.
+    std::string Validate() const
+    {
+        if (minSplitSize < 0 || maxClusterSize < 0) return "MinSplitSize and MaxClusterSize must not be negative";
+        if (creaseClusterSize < 0 || creaseClusterSize == 1) return "CreaseClusterSize must be 0 (off) or at least 2";
+        if (creaseMinSplitSize < 0) return "CreaseMinSplitSize must not be negative";
+        if (!(creaseBlendScale > 0 && creaseBlendScale <= 1)) return "CreaseBlendScale must be above 0 and at most 1";
+        if (maxIterations < 0) return "MaxIterations must not be negative";
+        if (!(convergenceFraction >= 0)) return "ConvergenceFraction must not be negative";
+        if (!(coverageMargin >= 0)) return "CoverageMargin must not be negative";
+        if (!(mergeWithin >= 1)) return "MergeWithin must be at least 1";
+        return std::string();
+    }
+};
+
+struct ResamplingParams
+{
+    // Size control: the error bound, else the target count, else the target percentage, else the level.
+    int subdivisionLevel = 8;      ///< n of the Gaussian sphere; with a target, the level its search starts from
+    int targetCount = 0;           ///< exact number of surfels (0 = off)
+    double targetPercentage = 0;   ///< exact number of surfels as a percentage of the usable points (0 = off)
+    double maxErrorFraction = 0;   ///< bound on each point's distance to the surfels' blended surface, as a
+                                   ///< fraction of the bounding-box diagonal (0 = off)
+    // Shape of the result.
+    int neighborCount = 16;        ///< k of the k-NN search (the paper's k)
+    double creaseAngle = 45;       ///< degrees: a neighbour's normal turned by more marks a crease (0 = off)
+    bool fitOffsets = true;        ///< surfels moved along their normals onto the blended surface (surfel_offset.h)
+    // The paper's other knobs, and the exchanges: for reproducing the paper and for experts.
+    int propagationDepth = 6;      ///< hops a label may travel from its seed (0 = unlimited)
+    double normalizationThreshold = 6.0; ///< clusters with lambda1/lambda2 above it are split
+    double weightWidth = 0;        ///< h of the surfel normal weights, in model units (0 = 1 % of the diagonal)
+    int maxErrorExchanges = 16;    ///< TargetCount: exchanges of clusters that lower the largest error (0 = off)
+
+    ResamplingTuning tuning;
+
+    SizeControl SizeMode() const
+    {
+        if (maxErrorFraction > 0) return SizeControl::ErrorBound;
+        if (targetCount > 0 || targetPercentage > 0) return SizeControl::TargetCount;
+        return SizeControl::Level;
+    }
+    /// The exact count wanted from `usablePoints` points (TargetCount mode): targetCount, else the
+    /// percentage rounded, at least 1.
+    int TargetFor(int usablePoints) const
+    {
+        if (targetCount > 0) return targetCount;
+        return std::max(1, int(std::lround(targetPercentage / 100.0 * usablePoints)));
+    }
+    /// Empty when valid, else a message naming the offending parameter.
+    std::string Validate() const;
+};
+
+enum class ParameterKind { Int, Float, Bool };
+
+/// Who sees a parameter: everyone (the MeshLab dialog, gsresample, the README's main table), or
+/// experts (gsresample and the README's expert table; the dialog uses the default).
+enum class ParameterAudience { Everyone, Expert };
+
+struct ParameterSpec
+{
+    const char *name;     ///< MeshLab's and the .mlx scripts' name
+    const char *option;   ///< gsresample's option
+    const char *label;    ///< the dialog's label
+    ParameterKind kind;
+    double defaultValue;
+    double min, max;      ///< valid values: min <= v <= max, or min < v (< max) where open; max may be infinite
+    bool minOpen, maxOpen;
+    ParameterAudience audience;
+    const char *help;     ///< one sentence: the dialog's tooltip, --help, the README
+    double (*get)(const ResamplingParams &); ///< null for options of the host (ColorizeClusters)
+    void (*set)(ResamplingParams &, double);
+
+    bool Accepts(double v) const
+    {
+        if (!std::isfinite(v)) return false;
+        if (kind == ParameterKind::Int && v != std::floor(v)) return false;
+        return (minOpen ? v > min : v >= min) && (maxOpen ? v < max : v <= max);
+    }
+    /// "between 2 and 256", "above 1", ...: the valid values in words.
+    std::string RangeText() const
+    {
+        const auto number = [](double v) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%g", v);
+            return std::string(text);
+        };
+        const bool unbounded = std::isinf(max);
+        if (kind == ParameterKind::Bool) return "0 or 1";
+        if (unbounded) return (minOpen ? "above " : "at least ") + number(min);
+        if (!minOpen && !maxOpen) return "between " + number(min) + " and " + number(max);
+        return (minOpen ? "above " : "at least ") + number(min) + (maxOpen ? " and below " : " and at most ") + number(max);
+    }
+};
+
+/// The parameters, in dialog order.
+inline const std::vector<ParameterSpec> &ParameterTable()
+{
+    using P = ResamplingParams;
+    const double unbounded = std::numeric_limits<double>::infinity();
+    static const std::vector<ParameterSpec> table = {
+        {"SubdivisionLevel", "--level", "Gaussian sphere level", ParameterKind::Int, 8, 2, 256, false, false,
+         ParameterAudience::Everyone,
+         "Level n of the Gaussian sphere: each face of an icosahedron is cut into (n-1)^2 triangles; higher levels "
+         "separate finer normal variations and give more surfels (the paper uses 8, 16 and 24).",
+         [](const P &p) { return double(p.subdivisionLevel); }, [](P &p, double v) { p.subdivisionLevel = int(v); }},
+        {"TargetCount", "--target", "Target surfel count", ParameterKind::Int, 0, 0, unbounded, false, false,
+         ParameterAudience::Everyone,
+         "Exact number of surfels (0 = off): the level is searched for, then clusters are split or merged to the "
+         "count; overrides the level and the percentage.",
+         [](const P &p) { return double(p.targetCount); }, [](P &p, double v) { p.targetCount = int(v); }},
+        {"TargetPercentage", "--percentage", "Target percentage", ParameterKind::Float, 0, 0, 100, false, false,
+         ParameterAudience::Everyone,
+         "Exact number of surfels as a percentage of the input points (0 = off), e.g. 10 for one surfel per ten "
+         "points; overrides the level.",
+         [](const P &p) { return p.targetPercentage; }, [](P &p, double v) { p.targetPercentage = v; }},
+        {"MaxError", "--max-error", "Maximum error (fraction of diagonal)", ParameterKind::Float, 0, 0, 1, false, true,
+         ParameterAudience::Everyone,
+         "Bound on the distance from every input point to the surface the surfels blend into, as a fraction of the "
+         "bounding-box diagonal, e.g. 0.002 (0 = off); clusters are split until it holds, and it overrides the other "
+         "size controls.",
+         [](const P &p) { return p.maxErrorFraction; }, [](P &p, double v) { p.maxErrorFraction = v; }},
+        {"NeighborCount", "--k", "Nearest neighbours", ParameterKind::Int, 16, 1, 255, false, false,
+         ParameterAudience::Everyone,
+         "Number k of nearest neighbours examined around each point; those inside the cone of normals of the level "
+         "are its adaptive neighbours.",
+         [](const P &p) { return double(p.neighborCount); }, [](P &p, double v) { p.neighborCount = int(v); }},
+        {"CreaseAngle", "--crease-angle", "Crease angle (degrees)", ParameterKind::Float, 45, 0, 120, false, true,
+         ParameterAudience::Everyone,
+         "A point whose neighbour's normal is turned by more than this angle lies on a crease, where clusters are "
+         "kept small so that surfels do not round sharp edges off (0 = off).",
+         [](const P &p) { return p.creaseAngle; }, [](P &p, double v) { p.creaseAngle = v; }},
+        {"FitOffsets", "--fit-offsets", "Fit surfels to the blended surface", ParameterKind::Bool, 1, 0, 1, false,
+         false, ParameterAudience::Everyone,
+         "Move each surfel along its normal so that the surface the surfels blend into passes through the input "
+         "points (off: at the cluster centroids, as in the paper); each move is kept as SurfelFitOffset.",
+         [](const P &p) { return p.fitOffsets ? 1.0 : 0.0; }, [](P &p, double v) { p.fitOffsets = v != 0; }},
+        {"ColorizeClusters", nullptr, "Colour input by cluster", ParameterKind::Bool, 0, 0, 1, false, false,
+         ParameterAudience::Everyone, "Give every cluster a random colour on the input layer, to inspect the clustering.",
+         nullptr, nullptr},
+        {"PropagationDepth", "--depth", "Propagation depth", ParameterKind::Int, 6, 0, unbounded, false, false,
+         ParameterAudience::Expert, "Hops a cluster label may travel from its seed point (the paper's depth; 0 = no limit).",
+         [](const P &p) { return double(p.propagationDepth); }, [](P &p, double v) { p.propagationDepth = int(v); }},
+        {"NormalizationThreshold", "--threshold", "Normalization threshold", ParameterKind::Float, 6, 1, unbounded, true,
+         false, ParameterAudience::Expert,
+         "Clusters whose positions' covariance has lambda1/lambda2 above it are split through the centroid (the "
+         "paper's threshold).",
+         [](const P &p) { return p.normalizationThreshold; }, [](P &p, double v) { p.normalizationThreshold = v; }},
+        {"WeightWidth", "--weight-width", "Normal weight width (h)", ParameterKind::Float, 0, 0, unbounded, false, false,
+         ParameterAudience::Expert,
+         "Width h, in model units, of the Gaussian weights blending a cluster's normals into its surfel's normal "
+         "(0 = 1 % of the bounding-box diagonal).",
+         [](const P &p) { return p.weightWidth; }, [](P &p, double v) { p.weightWidth = v; }},
+        {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,
+         false, false, ParameterAudience::Expert,
+         "With a target: at most this many exchanges of clusters (split one at the worst point, merge a similar "
+         "pair elsewhere) that lower the largest distance to the blended surface at the same count (0 = off).",
+         [](const P &p) { return double(p.maxErrorExchanges); }, [](P &p, double v) { p.maxErrorExchanges = int(v); }},
+    };
+    return table;
+}
+
+/// The table's entry named `name`, or null.
+inline const ParameterSpec *FindParameter(const std::string &name)
+{
+    for (const ParameterSpec &spec : ParameterTable())
+        if (name == spec.name) return &spec;
+    return nullptr;
+}
+
+inline std::string ResamplingParams::Validate() const
+{
+    for (const ParameterSpec &spec : ParameterTable())
+        if (spec.get != nullptr && !spec.Accepts(spec.get(*this)))
+            return std::string(spec.name) + " must be " + spec.RangeText();
+    return tuning.Validate();
+}
+
+} // namespace gaussphere
+} // namespace vcg
+
+#endif
