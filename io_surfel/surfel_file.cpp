@@ -343,7 +343,6 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
 std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd) {
   maxLength = std::max<std::size_t>(maxLength, 8);
   const auto escaped = [](unsigned char c) {
-    if (c == '\\') return std::string("\\\\");
     if (c >= 0x20 && c <= 0x7e) return std::string(1, char(c));
     char hex[5];
     std::snprintf(hex, sizeof hex, "\\x%02x", c);

@@ -65,8 +65,9 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
                      std::string& error);
 
 // `text` as printable ASCII of at most `maxLength` characters (at least 8): bytes outside
-// 0x20-0x7e become \xNN and a backslash \\; a longer result is cut, its cut end marked with
-// "...": the end of the text is kept when `keepEnd` (for paths), its start otherwise.
+// 0x20-0x7e become \xNN; a longer result is cut between whole escapes, its cut end marked
+// with "...": the end of the text is kept when `keepEnd` (for paths), its start otherwise.
+// Printable text within the length comes back unchanged.
 std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd = false);
 
 // True when some surfel has a non-zero axis. A file without any is one written from a layer

@@ -338,7 +338,8 @@ TEST(SurfelFile, ReasonsQuoteAtMostAShortPrintableExcerptOfTheFile) {
 
 TEST(SurfelFile, PrintableTextEscapesAndCutsWholeEscapes) {
   using surfel_io::printableText;
-  EXPECT_EQ(printableText("a\tb\\c\xe9", 100), "a\\x09b\\\\c\\xe9");
+  EXPECT_EQ(printableText("a\tb\\c\xe9", 100), "a\\x09b\\c\\xe9");
+  EXPECT_EQ(printableText(printableText("a\tb", 100), 100), "a\\x09b");
   EXPECT_EQ(printableText("0123456789", 10), "0123456789");
   EXPECT_EQ(printableText("0123456789A", 10), "0123456...");
   EXPECT_EQ(printableText("0123456789A", 10, true), "...456789A");
