@@ -283,8 +283,9 @@ bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::stri
   while (surfels.size() < count) {
     const std::size_t records = std::min<std::uint64_t>(count - surfels.size(), kRecordsPerChunk);
     if (!in.read(reinterpret_cast<char*>(chunk.data()), records * bytesPerRecord)) {
+      fail(error, "read error after " + std::to_string(surfels.size()) + " surfels");
       surfels.clear();
-      return fail(error, "read error after " + std::to_string(surfels.size()) + " surfels");
+      return false;
     }
     for (std::size_t r = 0; r < records; ++r) {
       surfels.push_back(decode(&chunk[r * bytesPerRecord], floatCount));

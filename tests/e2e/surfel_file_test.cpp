@@ -401,4 +401,28 @@ TEST(SurfelFile, WriterRefusesNonFiniteGeometryAndKeepsThePreviousFile) {
   EXPECT_FALSE(std::ifstream(path + ".part").good());
 }
 
+// The bytes of a file whose storage fails after the first block of records is read.
+class FailingAfterFirstBlock : public std::stringbuf {
+ public:
+  using std::stringbuf::stringbuf;
+
+ protected:
+  std::streamsize xsgetn(char* s, std::streamsize n) override {
+    return blockReads_++ == 0 ? std::stringbuf::xsgetn(s, n) : 0;
+  }
+
+ private:
+  int blockReads_ = 0;  // the header is read byte by byte, the records in blocks
+};
+
+TEST(SurfelFile, ReportsHowFarAReadGotBeforeItFailed) {
+  FailingAfterFirstBlock bytes(encode(syntheticSurfels(5000)), std::ios::in);
+  std::istream in(&bytes);
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  EXPECT_FALSE(surfel_io::readSurfels(in, surfels, error));
+  EXPECT_EQ(error, "read error after 4096 surfels");
+  EXPECT_TRUE(surfels.empty());
+}
+
 }  // namespace
