@@ -5,6 +5,8 @@
 
 #include <QFile>
 
+#include <cstdio>
+
 using surfel_io::SurfelRecord;
 
 namespace {
@@ -22,6 +24,19 @@ std::string localPath(const QString& fileName)
 }
 
 }  // namespace
+
+// MeshLab 2020.09's meshlabserver prints neither errorMsg() nor the log of a failed load or
+// save (only "Failed loading of FILE" / "Failed saving"), so the reason also goes to stderr;
+// the GUI shows errorMsg() in its dialog, and the log when it has one.
+bool SurfelIOPlugin::fail(const char* action, const QString& fileName, const std::string& reason)
+{
+	const std::string line = std::string("IOSurfel: cannot ") + action + " '" +
+	                         surfel_io::printableText(localPath(fileName), 100, true) + "': " + reason;
+	errorMessage = QString::fromStdString(line);
+	std::fprintf(stderr, "%s\n", line.c_str());
+	Log(GLLogStream::WARNING, line);
+	return false;
+}
 
 QString SurfelIOPlugin::pluginName() const
 {
@@ -48,14 +63,14 @@ bool SurfelIOPlugin::open(const QString& /*format*/, const QString& fileName, Me
                           int& mask, const RichParameterList& /*par*/, vcg::CallBackPos* cb,
                           QWidget* /*parent*/)
 {
+	// The GUI takes any message left after a successful load for a warning, and clears it only
+	// after loads: one left by a failed save would show then.
+	clearErrorString();
 	if (cb != nullptr) (*cb)(0, "Loading surfels...");
 	std::vector<SurfelRecord> surfels;
 	std::string error;
-	if (!surfel_io::readSurfelFile(localPath(fileName), surfels, error)) {
-		errorMessage = QString("Error encountered while loading file:\n\"%1\"\n\nError details: %2")
-		                   .arg(fileName, QString::fromStdString(error));
-		return false;
-	}
+	if (!surfel_io::readSurfelFile(localPath(fileName), surfels, error))
+		return fail("load", fileName, error);
 
 	// The normal flag also keeps MeshLab from recomputing normals of this face-less layer.
 	mask = kSurfelComponents;
@@ -73,14 +88,12 @@ bool SurfelIOPlugin::save(const QString& /*format*/, const QString& fileName, Me
                           const int /*mask*/, const RichParameterList& /*par*/,
                           vcg::CallBackPos* cb, QWidget* /*parent*/)
 {
+	clearErrorString();
 	if (cb != nullptr) (*cb)(0, "Saving surfels...");
 	const std::vector<SurfelRecord> surfels = surfel_io::recordsFromMesh(m.cm);
 	std::string error;
-	if (!surfel_io::writeSurfelFile(localPath(fileName), surfels, error)) {
-		errorMessage = QString("Error encountered while exporting file %1:\n%2")
-		                   .arg(fileName, QString::fromStdString(error));
-		return false;
-	}
+	if (!surfel_io::writeSurfelFile(localPath(fileName), surfels, error))
+		return fail("save", fileName, error);
 	if (!surfels.empty() && !surfel_io::hasEllipseFrames(surfels))
 		Log("%s: the layer has no ellipse frames, written with zero axes",
 		    qUtf8Printable(fileName));

@@ -5,6 +5,8 @@
 
 #include <common/interfaces.h>
 
+#include <string>
+
 class SurfelIOPlugin : public QObject, public MeshIOInterface
 {
 	Q_OBJECT
@@ -23,6 +25,11 @@ public:
 	bool save(const QString& format, const QString& fileName, MeshModel& m, const int mask,
 	          const RichParameterList& par, vcg::CallBackPos* cb = nullptr,
 	          QWidget* parent = nullptr) override;
+
+private:
+	// Reports `reason` (surfel_file's one-line reason) for `action` ("load", "save") on
+	// `fileName` and returns false.
+	bool fail(const char* action, const QString& fileName, const std::string& reason);
 };
 
 #endif

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -24,6 +25,10 @@ constexpr const char* kFloatPropertyNames[kFloatPropertyCount] = {
     "x", "y", "z", "nx", "ny", "nz", "radius", "major_x", "major_y", "major_z",
     "minor_x", "minor_y", "minor_z", "quality", "blend_scale", "fit_offset"};
 constexpr const char* kColorPropertyNames[kColorPropertyCount] = {"red", "green", "blue", "alpha"};
+
+// Position, normal, radius and the two axes: the first floats of a record, which must be finite
+// (docs/surfel_format.md). The others have a documented reading of any value.
+constexpr std::size_t kGeometryFloatCount = 13;
 
 std::size_t recordBytes(std::size_t floatCount) { return floatCount * 4 + kColorPropertyCount; }
 
@@ -86,6 +91,20 @@ SurfelRecord decode(const unsigned char* in, std::size_t floatCount) {
   return surfel;
 }
 
+// The reason for refusing surfel `index` when one of its geometry floats is not finite, or an
+// empty string when all are.
+std::string nonFiniteGeometry(SurfelRecord surfel, std::size_t index) {
+  const std::array<float*, kFloatPropertyCount> fields = floatFields(surfel);
+  for (std::size_t f = 0; f < kGeometryFloatCount; ++f) {
+    const float value = *fields[f];
+    if (!std::isfinite(value))
+      return "surfel " + std::to_string(index) + " has a non-finite " + kFloatPropertyNames[f] + " (" +
+             (std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf") +
+             "): positions, normals, radii and ellipse axes must be finite";
+  }
+  return std::string();
+}
+
 // Records are streamed through a buffer of this many, to keep memory flat on big files.
 constexpr std::size_t kRecordsPerChunk = 4096;
 
@@ -132,9 +151,24 @@ bool isFloatType(const std::string& type) { return type == "float" || type == "f
 bool isUcharType(const std::string& type) { return type == "uchar" || type == "uint8"; }
 
 bool fail(std::string& error, const std::string& reason) {
-  error = reason;
+  error = printableText(reason, kMaxReasonLength);
   return false;
 }
+
+// Fails with the reason for the first surfel whose geometry is not finite.
+bool checkGeometry(const std::vector<SurfelRecord>& surfels, std::string& error) {
+  for (std::size_t index = 0; index < surfels.size(); ++index) {
+    const std::string reason = nonFiniteGeometry(surfels[index], index);
+    if (!reason.empty()) return fail(error, reason);
+  }
+  return true;
+}
+
+// A path quoted in a reason, its end (the file name) kept.
+std::string quotedPath(const std::string& path) { return "'" + printableText(path, 100, true) + "'"; }
+
+// A header line or word quoted in a reason: short enough to leave room for the explanation.
+std::string quoted(const std::string& text) { return "'" + printableText(text, 60) + "'"; }
 
 // Checks the header against the layout of docs/surfel_format.md and returns the number of
 // records it announces and their float properties (by version); the stream is left at the first
@@ -165,26 +199,26 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount,
       } else if (text.compare(0, 18, "gaussphere-surfel ") == 0) {
         std::string known;
         for (const Version& v : kVersions) known += std::string(known.empty() ? "" : ", ") + "'" + v.magic + "'";
-        return fail(error, "unsupported .surfel version '" + text + "' (this reader reads " + known + ")");
+        return fail(error, "unsupported .surfel version " + quoted(text) + " (this reader reads " + known + ")");
       }
     } else if (keyword == "format") {
       if (words.size() != 3 || words[1] != "binary_little_endian" || words[2] != "1.0")
-        return fail(error, "unsupported PLY encoding '" + line +
-                               "': .surfel files are binary_little_endian 1.0");
+        return fail(error, "unsupported PLY encoding " + quoted(line) +
+                               ": .surfel files are binary_little_endian 1.0");
       hasFormat = true;
     } else if (keyword == "element") {
       if (hasVertexElement || words.size() != 3 || words[1] != "vertex")
-        return fail(error, "unexpected '" + line + "': a .surfel file has one vertex element");
+        return fail(error, "unexpected " + quoted(line) + ": a .surfel file has one vertex element");
       if (!parseCount(words[2], count))
-        return fail(error, "invalid vertex count in '" + line + "'");
+        return fail(error, "invalid vertex count in " + quoted(line));
       hasVertexElement = true;
     } else if (keyword == "property") {
       if (!hasVertexElement || words.size() != 3)
-        return fail(error, "unexpected '" + line + "' (vertex property " +
+        return fail(error, "unexpected " + quoted(line) + " (vertex property " +
                                std::to_string(properties.size() + 1) + " of the .surfel layout)");
       properties.push_back(line);
     } else {
-      return fail(error, "unknown PLY header line '" + line + "'");
+      return fail(error, "unknown PLY header line " + quoted(line));
     }
   }
   if (!hasFormat) return fail(error, "the PLY header has no 'format' line");
@@ -198,7 +232,7 @@ bool readHeader(std::istream& in, std::uint64_t& count, std::size_t& floatCount,
         index >= floatCount ? isUcharType(words[1]) && words[2] == kColorPropertyNames[index - floatCount]
                             : isFloatType(words[1]) && words[2] == kFloatPropertyNames[index];
     if (!expected)
-      return fail(error, "unexpected '" + properties[index] + "' (vertex property " +
+      return fail(error, "unexpected " + quoted(properties[index]) + " (vertex property " +
                              std::to_string(index + 1) + " of the .surfel layout)");
   }
   if (properties.size() != floatCount + kColorPropertyCount)
@@ -249,11 +283,18 @@ bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::stri
   while (surfels.size() < count) {
     const std::size_t records = std::min<std::uint64_t>(count - surfels.size(), kRecordsPerChunk);
     if (!in.read(reinterpret_cast<char*>(chunk.data()), records * bytesPerRecord)) {
-      error = "read error after " + std::to_string(surfels.size()) + " surfels";
+      fail(error, "read error after " + std::to_string(surfels.size()) + " surfels");
       surfels.clear();
       return false;
     }
-    for (std::size_t r = 0; r < records; ++r) surfels.push_back(decode(&chunk[r * bytesPerRecord], floatCount));
+    for (std::size_t r = 0; r < records; ++r) {
+      surfels.push_back(decode(&chunk[r * bytesPerRecord], floatCount));
+      const std::string reason = nonFiniteGeometry(surfels.back(), surfels.size() - 1);
+      if (!reason.empty()) {
+        surfels.clear();
+        return fail(error, reason);
+      }
+    }
   }
   return true;
 }
@@ -261,11 +302,12 @@ bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::stri
 bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels, std::string& error) {
   surfels.clear();
   std::ifstream in(path, std::ios::binary);
-  if (!in) return fail(error, "cannot open '" + path + "': " + std::strerror(errno));
+  if (!in) return fail(error, "cannot open " + quotedPath(path) + ": " + std::strerror(errno));
   return readSurfels(in, surfels, error);
 }
 
 bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error) {
+  if (!checkGeometry(surfels, error)) return false;
   out << "ply\nformat binary_little_endian 1.0\ncomment " << kSurfelFileMagic << "\n"
       << "element vertex " << surfels.size() << "\n";
   for (const char* name : kFloatPropertyNames) out << "property float " << name << "\n";
@@ -287,15 +329,39 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
                      std::string& error) {
   // Written beside and renamed over `path`: a failed save leaves no truncated file behind
   // and the previous file intact.
+  if (!checkGeometry(surfels, error)) return false;
   const std::string partPath = path + ".part";
   std::ofstream out(partPath, std::ios::binary | std::ios::trunc);
-  if (!out) return fail(error, "cannot open '" + partPath + "' for writing: " + std::strerror(errno));
+  if (!out) return fail(error, "cannot open " + quotedPath(partPath) + " for writing: " + std::strerror(errno));
   const bool written = writeSurfels(out, surfels, error);
   out.close();
   if (written && out && std::rename(partPath.c_str(), path.c_str()) == 0) return true;
   const std::string reason = std::strerror(errno);
   std::remove(partPath.c_str());
-  return fail(error, "cannot write '" + path + "': " + reason);
+  return fail(error, "cannot write " + quotedPath(path) + ": " + reason);
+}
+
+std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd) {
+  maxLength = std::max<std::size_t>(maxLength, 8);
+  const auto escaped = [](unsigned char c) {
+    if (c >= 0x20 && c <= 0x7e) return std::string(1, char(c));
+    char hex[5];
+    std::snprintf(hex, sizeof hex, "\\x%02x", c);
+    return std::string(hex);
+  };
+  std::size_t fullLength = 0;
+  for (std::size_t i = 0; i < text.size() && fullLength <= maxLength; ++i) fullLength += escaped(text[i]).size();
+  const bool cut = fullLength > maxLength;
+  const std::size_t budget = cut ? maxLength - 3 : maxLength;
+  // Whole escapes only, from the kept end inwards.
+  std::string result;
+  for (std::size_t n = 0; n < text.size(); ++n) {
+    const std::string piece = escaped(text[keepEnd ? text.size() - 1 - n : n]);
+    if (result.size() + piece.size() > budget) break;
+    result = keepEnd ? piece + result : result + piece;
+  }
+  if (cut) result = keepEnd ? "..." + result : result + "...";
+  return result;
 }
 
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {

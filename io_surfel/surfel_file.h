@@ -11,6 +11,7 @@
 #define GAUSSPHERE_IO_SURFEL_SURFEL_FILE_H
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -43,15 +44,31 @@ constexpr const char* kSurfelFileMagic = "gaussphere-surfel 3";
 constexpr const char* kSurfelFileMagicVersion2 = "gaussphere-surfel 2";
 constexpr const char* kSurfelFileMagicVersion1 = "gaussphere-surfel 1";
 
+// Every reason these functions put in `error` is one line of at most kMaxReasonLength
+// printable ASCII characters: text taken from the file or a path is cut and escaped
+// (printableText).
+constexpr std::size_t kMaxReasonLength = 200;
+
 // Reading is strict: anything but the exact layout above (extra `comment` and `obj_info`
-// lines aside), a data section shorter or longer than the header announces, or an
-// unreadable file fails with a one-line reason in `error`; `surfels` is then left empty.
+// lines aside), a data section shorter or longer than the header announces, a record whose
+// geometry (position, normal, radius or an axis: the first 13 floats) is not finite, or an
+// unreadable file fails with a reason in `error` naming what is wrong (for a record: its
+// index and the property); `surfels` is then left empty.
 bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error);
 bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels, std::string& error);
 
+// Writing refuses, before writing anything, surfels the reader would refuse (non-finite
+// geometry), naming the first one; quality, blend scale, fit offset and colour are written as
+// they are.
 bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error);
+
+// `text` as printable ASCII of at most `maxLength` characters (at least 8): bytes outside
+// 0x20-0x7e become \xNN; a longer result is cut between whole escapes, its cut end marked
+// with "...": the end of the text is kept when `keepEnd` (for paths), its start otherwise.
+// Printable text within the length comes back unchanged.
+std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd = false);
 
 // True when some surfel has a non-zero axis. A file without any is one written from a layer
 // without ellipse frames, and loads without the ellipse attributes.

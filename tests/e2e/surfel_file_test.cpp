@@ -8,9 +8,13 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <sstream>
 
 namespace {
@@ -73,14 +77,37 @@ std::string olderVersionBytes(const std::vector<SurfelRecord>& surfels, int vers
   return bytes;
 }
 
+// True when `reason` is what the reader and writer promise: one line of at most
+// kMaxReasonLength printable ASCII characters.
+bool isShortPrintableLine(const std::string& reason) {
+  return !reason.empty() && reason.size() <= surfel_io::kMaxReasonLength &&
+         std::all_of(reason.begin(), reason.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
+}
+
 // Expects `bytes` to be refused with a reason containing `reason`.
 void expectRefused(const std::string& bytes, const std::string& reason) {
   std::vector<SurfelRecord> surfels(1);
   std::string error;
   EXPECT_FALSE(decode(bytes, surfels, error));
   EXPECT_NE(error.find(reason), std::string::npos) << "error: " << error;
+  EXPECT_TRUE(isShortPrintableLine(error)) << "error: " << error;
   EXPECT_TRUE(surfels.empty());
 }
+
+// The bytes of syntheticSurfels(count) with float property `property` (0 = x, ..., 15 =
+// fit_offset) of record `record` set to `value`, which the writer may refuse to write.
+std::string withFloat(std::size_t count, std::size_t record, std::size_t property, float value) {
+  std::string bytes = encode(syntheticSurfels(count));
+  const std::size_t at = bytes.find("end_header\n") + 11 + record * 68 + property * 4;
+  std::memcpy(&bytes[at], &value, 4);  // the tests run on little-endian hosts, like the files
+  return bytes;
+}
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+const char* const kGeometryProperties[] = {"x", "y", "z", "nx", "ny", "nz", "radius",
+                                           "major_x", "major_y", "major_z",
+                                           "minor_x", "minor_y", "minor_z"};
 
 TEST(SurfelFile, WritesTheDocumentedHeaderAnd68BytesPerSurfel) {
   const std::string bytes = encode(syntheticSurfels(3));
@@ -281,6 +308,121 @@ TEST(SurfelFile, FitOffsetsAreAnyNonZeroOffsetAndPartOfTheRecord) {
   EXPECT_TRUE(surfel_io::hasFitOffsets(surfels));
   EXPECT_NE(surfels[2], surfels[1]);
   EXPECT_TRUE(surfel_io::hasFitOffsets(syntheticSurfels(2)));
+}
+
+// A reason never echoes the 64 KB a header line may hold, nor its control or non-ASCII bytes.
+TEST(SurfelFile, ReasonsQuoteAtMostAShortPrintableExcerptOfTheFile) {
+  const std::string longLine = "\x1b[2J\r\xff" + std::string(60000, 'A');
+  expectRefused(withHeaderEdit("binary_little_endian", longLine), "unsupported PLY encoding 'format \\x1b[2J\\x0d\\xffAAA");
+  expectRefused(withHeaderEdit("end_header", longLine + "\nend_header"), "unknown PLY header line '\\x1b[2J");
+  expectRefused(withHeaderEdit("gaussphere-surfel 3", "gaussphere-surfel " + longLine),
+                "unsupported .surfel version 'gaussphere-surfel \\x1b[2J");
+  expectRefused(withHeaderEdit("vertex 3", "vertex 3" + std::string(60000, '7')),
+                "invalid vertex count in 'element vertex 37777");
+  expectRefused(withHeaderEdit("vertex 3", "vertex 3 " + longLine), "a .surfel file has one vertex element");
+  expectRefused(withHeaderEdit("property float y", "property float" + longLine),
+                "unexpected 'property float\\x1b[2J");
+  expectRefused(withHeaderEdit("property float y", "property float " + longLine), "(vertex property 2 of");
+
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  const std::string path = "/nonexistent/" + std::string(3000, 'x') + "\n.surfel";
+  EXPECT_FALSE(surfel_io::readSurfelFile(path, surfels, error));
+  EXPECT_TRUE(isShortPrintableLine(error)) << error;
+  EXPECT_EQ(error.rfind("cannot open '...xxx", 0), 0u) << error;  // the end of the path is kept
+  EXPECT_NE(error.find("xxx\\x0a.surfel': "), std::string::npos) << error;
+  EXPECT_FALSE(surfel_io::writeSurfelFile(path, syntheticSurfels(1), error));
+  EXPECT_TRUE(isShortPrintableLine(error)) << error;
+  EXPECT_NE(error.find("xxx\\x0a.surfel.part' for writing"), std::string::npos) << error;
+}
+
+TEST(SurfelFile, PrintableTextEscapesAndCutsWholeEscapes) {
+  using surfel_io::printableText;
+  EXPECT_EQ(printableText("a\tb\\c\xe9", 100), "a\\x09b\\c\\xe9");
+  EXPECT_EQ(printableText(printableText("a\tb", 100), 100), "a\\x09b");
+  EXPECT_EQ(printableText("0123456789", 10), "0123456789");
+  EXPECT_EQ(printableText("0123456789A", 10), "0123456...");
+  EXPECT_EQ(printableText("0123456789A", 10, true), "...456789A");
+  EXPECT_EQ(printableText("012345\n789", 10), "012345...");  // "\x0a" does not fit whole
+  EXPECT_EQ(printableText("0123\n56789", 10, true), "...56789");
+  EXPECT_EQ(printableText(std::string(1000, '\0'), 3), "\\x00...");  // 8 at least, whole escapes
+}
+
+// Positions, normals, radii and axes must be finite: the reader names the first record and
+// property that are not.
+TEST(SurfelFile, RefusesNonFiniteGeometryNamingTheFirstRecordAndProperty) {
+  for (std::size_t property = 0; property < 13; ++property) {
+    SCOPED_TRACE(kGeometryProperties[property]);
+    for (float value : {kNaN, kInf, -kInf}) {
+      const std::string name = kGeometryProperties[property];
+      const char* const text = std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf";
+      expectRefused(withFloat(5, 3, property, value), "surfel 3 has a non-finite " + name + " (" + text + ")");
+    }
+  }
+  std::string bytes = withFloat(5000, 4500, 2, kNaN);  // in the second chunk of records
+  const std::size_t at = bytes.find("end_header\n") + 11 + 4097 * 68 + 5 * 4;  // nz of 4097
+  std::memcpy(&bytes[at], &kInf, 4);
+  expectRefused(bytes, "surfel 4097 has a non-finite nz (inf)");
+}
+
+// Quality, blend scale and fit offset have a reading of any value (docs/surfel_format.md):
+// they are kept as they are, bit for bit.
+TEST(SurfelFile, KeepsNonFiniteQualityBlendScaleAndFitOffset) {
+  std::vector<SurfelRecord> surfels = syntheticSurfels(3);
+  surfels[0].quality = kNaN;
+  surfels[1].blendScale = kInf;
+  surfels[2].fitOffset = -kNaN;
+  const std::string bytes = encode(surfels);
+  std::vector<SurfelRecord> read;
+  std::string error;
+  ASSERT_TRUE(decode(bytes, read, error)) << error;
+  EXPECT_EQ(encode(read), bytes);
+}
+
+// The writer refuses what the reader would, before writing a byte or touching the file.
+TEST(SurfelFile, WriterRefusesNonFiniteGeometryAndKeepsThePreviousFile) {
+  std::vector<SurfelRecord> surfels = syntheticSurfels(4);
+  surfels[3].position[0] = kNaN;
+  surfels[2].minorAxis[1] = -kInf;
+  std::ostringstream out;
+  std::string error;
+  EXPECT_FALSE(surfel_io::writeSurfels(out, surfels, error));
+  EXPECT_NE(error.find("surfel 2 has a non-finite minor_y (-inf)"), std::string::npos) << error;
+  EXPECT_TRUE(isShortPrintableLine(error)) << error;
+  EXPECT_TRUE(out.str().empty());
+
+  const std::string path = testing::TempDir() + "surfel_file_non_finite.surfel";
+  const std::string previous = encode(syntheticSurfels(2));
+  std::ofstream(path, std::ios::binary) << previous;
+  EXPECT_FALSE(surfel_io::writeSurfelFile(path, surfels, error));
+  EXPECT_NE(error.find("surfel 2 has a non-finite minor_y"), std::string::npos) << error;
+  std::ifstream in(path, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), previous);
+  EXPECT_FALSE(std::ifstream(path + ".part").good());
+}
+
+// The bytes of a file whose storage fails after the first block of records is read.
+class FailingAfterFirstBlock : public std::stringbuf {
+ public:
+  using std::stringbuf::stringbuf;
+
+ protected:
+  std::streamsize xsgetn(char* s, std::streamsize n) override {
+    return blockReads_++ == 0 ? std::stringbuf::xsgetn(s, n) : 0;
+  }
+
+ private:
+  int blockReads_ = 0;  // the header is read byte by byte, the records in blocks
+};
+
+TEST(SurfelFile, ReportsHowFarAReadGotBeforeItFailed) {
+  FailingAfterFirstBlock bytes(encode(syntheticSurfels(5000)), std::ios::in);
+  std::istream in(&bytes);
+  std::vector<SurfelRecord> surfels;
+  std::string error;
+  EXPECT_FALSE(surfel_io::readSurfels(in, surfels, error));
+  EXPECT_EQ(error, "read error after 4096 surfels");
+  EXPECT_TRUE(surfels.empty());
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 #   1. the sample bunny against itself (the floor): both log lines, distances in vertex quality,
 #      colours written;
 #   2. a layer without normals: the run fails with a message saying so;
-#   3. when the resampling plugin is staged too: resample, then measure with SurfelIndex.
+#   3. hostile coordinates: NaN and infinite points are skipped and counted in the log, a
+#      coordinate beyond 1e18 fails the run with a message naming the vertex;
+#   4. when the resampling plugin is staged too: resample, then measure with SurfelIndex.
 # Environment (tests/error/CMakeLists.txt): RUN_MESHLABSERVER, MESHLABSERVER_BIN, SAMPLE_DATA,
 # WORK_DIR. Exits 77 (skipped) when the plugin is not staged.
 set -uo pipefail
@@ -49,6 +51,29 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
 "$RUN_MESHLABSERVER" -i no_normals.ply -s floor.mlx > no_normals.log 2>&1
 check "a layer without normals fails" test $? -ne 0
 check "... saying it has no normals" grep -q "has no normals" no_normals.log
+
+# oriented_ply FILE "x y z nx ny nz" ...: an ASCII PLY point set with normals.
+oriented_ply() {
+  local file="$1"; shift
+  { printf 'ply\nformat ascii 1.0\nelement vertex %d\n' $#
+    for p in x y z nx ny nz; do echo "property float $p"; done
+    echo end_header; printf '%s\n' "$@"; } > "$file"
+}
+grid=()
+for x in 0 1 2 3; do for y in 0 1 2 3; do grid+=("0.$x 0.$y 0 0 0 1"); done; done
+oriented_ply non_finite.ply "${grid[@]}" "nan 0 0 0 0 1" "0 inf 0 0 0 1" "0.1 0.1 0 nan 0 1"
+"$RUN_MESHLABSERVER" -i non_finite.ply -s floor.mlx > non_finite.log 2>&1
+check "non-finite points are skipped" test $? -eq 0
+check "... the 2 without a position counted" grep -q "2 original point(s) with an invalid position were not measured" non_finite.log
+check "... the 3 unusable surfels counted" grep -q "3 simplified point(s) without a valid position or normal were ignored" non_finite.log
+check "... the 17 others measured" grep -q "against 'non_finite.ply' (17 points)" non_finite.log
+
+oriented_ply far.ply "${grid[@]}" "3e38 0 0 0 0 1"
+"$RUN_MESHLABSERVER" -i far.ply -s floor.mlx > far.log 2>&1
+status=$?
+check "a coordinate of 3e38 fails the run (status $status, 255 for a failed script)" test "$status" -eq 255
+check "... naming the vertex and the limit" \
+  grep -q "vertex 16 of the original set has the coordinate 3e+38, beyond the supported +-1e18" far.log
 
 if [ -e "$plugins/libfilter_gaussphere.so" ]; then
   { sed '$d' "$SAMPLE_DATA/resample_level8.mlx"; error_filter 0 1 false; echo "</FilterScript>"; } > pipeline.mlx

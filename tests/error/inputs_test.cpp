@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 using namespace surfel_error_test;
 using vcg::Point3f;
@@ -20,6 +21,13 @@ using vcg::tri::SurfelErrorStats;
 namespace {
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+::testing::AssertionResult Contains(const std::string& text, const std::string& part)
+{
+    if (text.find(part) != std::string::npos)
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "'" << text << "' does not contain '" << part << "'";
+}
 
 // vcg meshes cannot be copied or moved: each fixture fills a mesh of the caller.
 
@@ -290,4 +298,67 @@ TEST(SurfelErrorInputs, NonFiniteOrDeletedOriginalPointsAreSkipped)
     EXPECT_TRUE(std::isnan(perPoint[7]));
     EXPECT_NEAR(perPoint[5], 0.01, 1e-7);
     EXPECT_NEAR(stats.diagonal, std::sqrt(2.0) * 0.3, 1e-6);
+}
+
+namespace {
+
+/// The message of the std::invalid_argument ComputeSurfelError throws, or "" when it measures.
+std::string RefusalOf(const PointSet& original, const PointSet& surfels)
+{
+    try {
+        ComputeSurfelError(original, surfels);
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+    return std::string();
+}
+
+} // namespace
+
+// vcg's single-precision KdTree overflows on such coordinates (squared distances, split values
+// near FLT_MAX that read past its buffer): the metric refuses them before building it.
+TEST(SurfelErrorInputs, CoordinatesBeyond1e18AreRefusedNamingTheVertex)
+{
+    PointSet original, surfels;
+    AddPlaneGrid(original, 4, 4, 0.1f);
+    AddPlaneGrid(surfels, 4, 4, 0.1f, 0.01f);
+    AddPoint(original, Point3f(3e38f, 0, 0), Point3f(0, 0, 1));
+    EXPECT_TRUE(Contains(RefusalOf(original, surfels),
+                        "vertex 16 of the original set has the coordinate 3e+38, beyond the supported +-1e18"));
+
+    PointSet plane, farSurfel;
+    AddPlaneGrid(plane, 4, 4, 0.1f);
+    AddPlaneGrid(farSurfel, 4, 4, 0.1f, 0.01f);
+    AddPoint(farSurfel, Point3f(0, -2e19f, 0), Point3f(0, 0, 1));
+    EXPECT_TRUE(Contains(RefusalOf(plane, farSurfel), "vertex 16 of the simplified set has the coordinate -2e+19"));
+
+    // A small box far out: finite extent, but sums of coordinates overflow single precision.
+    PointSet farOriginal, farSurfels;
+    AddPlaneGrid(farOriginal, 4, 4, 1e32f, 0, 3e38f);
+    AddPlaneGrid(farSurfels, 4, 4, 1e32f, 0, 3e38f);
+    EXPECT_TRUE(Contains(RefusalOf(farOriginal, farSurfels), "vertex 0 of the original set"));
+}
+
+TEST(SurfelErrorInputs, UnusableSurfelsFarOutAreIgnoredNotRefused)
+{
+    PointSet original, surfels;
+    AddPlaneGrid(original, 4, 4, 0.1f);
+    AddPlaneGrid(surfels, 4, 4, 0.1f, 0.01f);
+    AddPoint(surfels, Point3f(3e38f, 0, 0), Point3f(0, 0, 0)); // no normal
+    const SurfelErrorStats stats = ComputeSurfelError(original, surfels);
+    EXPECT_EQ(stats.usableSurfelCount, 16u);
+    EXPECT_NEAR(stats.distance.max, 0.01, 1e-7);
+}
+
+TEST(SurfelErrorInputs, CoordinatesUpTo1e18AreMeasured)
+{
+    PointSet original, surfels;
+    AddPlaneGrid(original, 10, 10, 1e17f, 0, -4.5e17f, -4.5e17f);
+    AddPlaneGrid(surfels, 10, 10, 1e17f, 1e15f, -4.5e17f, -4.5e17f);
+    AddPoint(original, Point3f(-1e18f, 1e18f, 0), Point3f(0, 0, 1));
+    AddPoint(surfels, Point3f(1e18f, -1e18f, 1e15f), Point3f(0, 0, 1));
+    const SurfelErrorStats stats = ComputeSurfelError(original, surfels);
+    EXPECT_EQ(stats.distance.count, 101u);
+    EXPECT_NEAR(stats.distance.max, 1e15, 1e9);
+    EXPECT_NEAR(stats.distance.rms, 1e15, 1e9);
 }

@@ -76,6 +76,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -182,6 +183,29 @@ namespace surfel_error_detail {
 inline bool IsFinite(const Point3d& p)
 {
     return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+/// Largest coordinate magnitude accepted (see CheckCoordinates).
+constexpr double kMaxCoordinate = 1e18;
+
+/// Throws std::invalid_argument when a coordinate of the finite point p, vertex `vertex` of
+/// the `set` ("original", "simplified"), exceeds kMaxCoordinate in magnitude. The center tree
+/// (vcg::KdTree<float>) adds coordinates and squares their differences in single precision:
+/// beyond about 1.8e19 distances become infinite, and near FLT_MAX its split values do, which
+/// makes vcg's KdTree::split read past its buffer. Within ±1e18 the largest squared distance
+/// between two accepted points, 1.2e37, is finite.
+inline void CheckCoordinates(const Point3d& p, std::size_t vertex, const char* set)
+{
+    for (int axis = 0; axis < 3; ++axis)
+        if (std::abs(p[axis]) > kMaxCoordinate) {
+            char message[256];
+            std::snprintf(message, sizeof message,
+                          "surfel error: vertex %zu of the %s set has the coordinate %.3g, beyond the "
+                          "supported +-1e18 (the spatial index works in single precision): scale the "
+                          "layers down",
+                          vertex, set, p[axis]);
+            throw std::invalid_argument(message);
+        }
 }
 
 /// The unit vector along `n`, or the zero vector when `n` is zero or not finite.
@@ -479,6 +503,7 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
         s.normal = UnitOrZero(Point3d::Construct(simplified.vert[v].cN()));
         if (!IsFinite(s.center) || s.normal == Point3d(0, 0, 0))
             continue;
+        CheckCoordinates(s.center, v, "simplified");
         surfelOfVertex[v] = int(surfels.size());
         surfels.push_back(s);
         centers.push_back(s.center);
@@ -592,6 +617,8 @@ inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& center
  *       representatives lie in [-1, simplified.vert.size()); params are valid (counts ≥ 1,
  *       widthFactor > 0, convergenceTolerance ≥ 0). A violated precondition throws
  *       std::invalid_argument with a message meant for the user; nothing is written then.
+ *       So does a finite coordinate beyond ±1e18 in S or in a usable surfel of S'
+ *       (surfel_error_detail::CheckCoordinates: the spatial index works in single precision).
  * \post The figures are computed in double precision and do not depend on the thread count.
  *       Summaries over no point (e.g. normalToOwnSurfel when S has no normals) have count 0
  *       and NaN figures; normalizedDistance is NaN when S has a zero diagonal.
@@ -609,13 +636,16 @@ SurfelErrorStats ComputeSurfelError(const OriginalMesh& original, const Simplifi
 
     SurfelErrorStats stats;
     Box3d box;
-    for (const auto& v : original.vert) {
+    for (std::size_t i = 0; i < original.vert.size(); ++i) {
+        const auto& v = original.vert[i];
         if (v.IsD())
             continue;
         ++stats.originalPointCount;
         const Point3d p = Point3d::Construct(v.cP());
-        if (IsFinite(p))
-            box.Add(p);
+        if (!IsFinite(p))
+            continue;
+        CheckCoordinates(p, i, "original");
+        box.Add(p);
     }
     if (box.IsNull())
         throw std::invalid_argument("surfel error: the original set has no point with a finite position");
