@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include <vcg_ext/gaussphere/surfel_mesh.h> // attribute names of docs/surfel_format.md
+#include <vcg_ext/surfel/surfel_attributes.h> // attribute names of docs/surfel_format.md
 #include <vcg_ext/surfel_error/surfel_error.h>
 
 namespace gs = vcg::gaussphere;
@@ -155,7 +155,7 @@ void FilterSurfelErrorPlugin::initParameterSet(QAction*, MeshDocument& md, RichP
                 break;
             }
 
-    const vcg::tri::SurfelErrorParams defaults;
+    const vcg::gaussphere::metric::SurfelErrorParams defaults;
     par.addParam(
         RichMesh("OriginalMesh", original, &md, "Original point set",
                  "The original oriented point set S: every one of its points is measured. Its vertex quality "
@@ -226,13 +226,13 @@ bool FilterSurfelErrorPlugin::measure(MeshDocument& md, const RichParameterList&
             "The original layer '%s' has no normals: only the distances are measured. %s",
             qUtf8Printable(original->label()), qUtf8Printable(noNormalsAdvice));
 
-    vcg::tri::SurfelErrorParams params;
+    vcg::gaussphere::metric::SurfelErrorParams params;
     params.neighborCount = par.getInt("NeighborCount");
     params.widthFactor = par.getFloat("WidthFactor");
 
     std::vector<vcg::Point3f> majorAxes, minorAxes;
     std::vector<int> representative;
-    vcg::tri::SurfelErrorAttributes attributes;
+    vcg::gaussphere::metric::SurfelErrorAttributes attributes;
     if (CopyPerVertexAttribute(simplified->cm, gs::kMajorAxisAttribute, majorAxes) &&
         CopyPerVertexAttribute(simplified->cm, gs::kMinorAxisAttribute, minorAxes)) {
         attributes.ellipseMajorAxes = &majorAxes;
@@ -261,9 +261,9 @@ bool FilterSurfelErrorPlugin::measure(MeshDocument& md, const RichParameterList&
     QElapsedTimer timer;
     timer.start();
     std::vector<float> distance;
-    vcg::tri::SurfelErrorStats stats;
+    vcg::gaussphere::metric::SurfelErrorStats stats;
     try {
-        stats = vcg::tri::ComputeSurfelError(original->cm, simplified->cm, params, attributes, &distance, cb);
+        stats = vcg::gaussphere::metric::ComputeSurfelError(original->cm, simplified->cm, params, attributes, &distance, cb);
     } catch (const std::exception& e) {
         return fail(QString("Cannot measure: %1.").arg(e.what()));
     }
@@ -281,13 +281,13 @@ bool FilterSurfelErrorPlugin::measure(MeshDocument& md, const RichParameterList&
         vcg::tri::UpdateColor<CMeshO>::PerVertexQualityRamp(cm, red, 0.0f);
     }
 
-    const vcg::tri::ErrorSummary &nd = stats.normalizedDistance, &d = stats.distance;
+    const vcg::gaussphere::metric::ErrorSummary &nd = stats.normalizedDistance, &d = stats.distance;
     Log("Surfel error of '%s' (%zu surfels) against '%s' (%zu points): D*rms %.3e D*max %.3e (p99.9 %.3e); "
         "absolute Drms %.3e Dmax %.3e (p99.9 %.3e), diagonal %.4g; %.2f s",
         qUtf8Printable(simplified->label()), stats.usableSurfelCount, qUtf8Printable(original->label()),
         d.count, nd.rms, nd.max, nd.p999, d.rms, d.max, d.p999, stats.diagonal, seconds);
     if (stats.normalToOwnSurfel.count > 0) {
-        const vcg::tri::ErrorSummary &own = stats.normalToOwnSurfel, &blended = stats.normalToBlended;
+        const vcg::gaussphere::metric::ErrorSummary &own = stats.normalToOwnSurfel, &blended = stats.normalToBlended;
         Log("Surfel error L2,1 |n-n'| over %zu points: own surfel (%s) rms %.4f max %.4f (p99.9 %.4f); "
             "blended normal rms %.4f max %.4f (p99.9 %.4f)",
             own.count, attributes.representative ? "SurfelIndex" : "nearest", own.rms, own.max, own.p999,

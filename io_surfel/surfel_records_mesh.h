@@ -1,7 +1,7 @@
 // Converts between `.surfel` records (surfel_file.h) and a vcg mesh whose vertices carry
 // the surfel attributes of docs/surfel_format.md, the ellipse axes being the per-vertex
 // attributes (of type MeshType::CoordType, Point3m in MeshLab) named in
-// vcg_ext/gaussphere/surfel_mesh.h. Header-only, templated on the mesh type, so MeshLab's
+// vcg_ext/surfel/surfel_attributes.h. Header-only, templated on the mesh type, so MeshLab's
 // CMeshO (io_surfel plugin) and the test and tool meshes share it.
 #ifndef GAUSSPHERE_IO_SURFEL_SURFEL_RECORDS_MESH_H
 #define GAUSSPHERE_IO_SURFEL_SURFEL_RECORDS_MESH_H
@@ -9,7 +9,7 @@
 #include "surfel_file.h"
 
 #include <vcg/complex/complex.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/surfel/surfel_attributes.h>
 
 #include <vector>
 

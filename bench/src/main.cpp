@@ -238,7 +238,7 @@ struct Row
     bool matched = true;
     double timeAlg = kNaN, timeProcess = kNaN, peakMegabytes = kNaN;
     bool measured = false;
-    vcg::tri::SurfelErrorStats error;
+    vcg::gaussphere::metric::SurfelErrorStats error;
     // Beyond the paper: the run's targets (0 = off), and what they gave.
     double targetPercent = 0, maxError = 0;
     int targetPoints = 0;
@@ -435,7 +435,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     SimplifiedSet ours;
     {
         vcg::gaussphere::IndexArray reference; // representative[] of the first thread count, to check the others
-        vcg::tri::SurfelErrorStats error;
+        vcg::gaussphere::metric::SurfelErrorStats error;
         double errorAboveFraction = kNaN;
         // Without an "ours" row, one untimed run is enough to fix the target.
         if (!wanted("ours")) threadCounts.resize(1);

@@ -56,9 +56,9 @@ void CopySubset(const PointMesh &from, const std::vector<int> &indices, PointMes
     vcg::tri::UpdateBounding<PointMesh>::Box(to);
 }
 
-vcg::tri::SurfelErrorAttributes SimplifiedSet::Attributes() const
+vcg::gaussphere::metric::SurfelErrorAttributes SimplifiedSet::Attributes() const
 {
-    vcg::tri::SurfelErrorAttributes a;
+    vcg::gaussphere::metric::SurfelErrorAttributes a;
     if (!major.empty()) {
         a.ellipseMajorAxes = &major;
         a.ellipseMinorAxes = &minor;
@@ -80,10 +80,10 @@ void MakeIdentitySet(const PointMesh &input, SimplifiedSet &set)
     set.representative = all;
 }
 
-vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
+vcg::gaussphere::metric::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
                                     std::vector<float> *perPointDistance)
 {
-    return vcg::tri::ComputeSurfelError(input, set.mesh, vcg::tri::SurfelErrorParams(), set.Attributes(),
+    return vcg::gaussphere::metric::ComputeSurfelError(input, set.mesh, vcg::gaussphere::metric::SurfelErrorParams(), set.Attributes(),
                                         perPointDistance);
 }
 

@@ -37,7 +37,7 @@ struct SimplifiedSet
     std::vector<int> representative;        ///< per input point: its surfel; empty: nearest centre
 
     int Count() const { return mesh.vn; }
-    vcg::tri::SurfelErrorAttributes Attributes() const;
+    vcg::gaussphere::metric::SurfelErrorAttributes Attributes() const;
 };
 
 /// S' = S: every input point is its own circular surfel. Its error is the metric's floor.
@@ -45,7 +45,7 @@ void MakeIdentitySet(const PointMesh &input, SimplifiedSet &set);
 
 /// Error of `set` against `input` with the metric's default parameters. `perPointDistance`, if
 /// given, receives d(q, S') per input vertex (NaN where undefined), in model units.
-vcg::tri::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
+vcg::gaussphere::metric::SurfelErrorStats Evaluate(const PointMesh &input, const SimplifiedSet &set,
                                     std::vector<float> *perPointDistance = nullptr);
 
 } // namespace gsbench

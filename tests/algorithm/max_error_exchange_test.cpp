@@ -32,7 +32,7 @@ double Diagonal(const gstest::PointSet &s)
     return box.Diag();
 }
 
-vcg::tri::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels) { return BlendedSurfaceOf(surfels); }
+vcg::gaussphere::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels) { return BlendedSurfaceOf(surfels); }
 
 } // namespace
 
@@ -43,9 +43,9 @@ TEST(MaxErrorExchange, ProjectionReachBoundsTheSurfelsUsed)
 {
     const gstest::PointSet cube = gstest::CubeSurface(16, true);
     const ResamplingResult r = gstest::Resample(cube, AtTarget(120, 0));
-    const vcg::tri::SurfelErrorParams metric;
+    const vcg::gaussphere::metric::SurfelErrorParams metric;
     const double tolerance = metric.convergenceTolerance * Diagonal(cube);
-    vcg::tri::SurfelSurface::Scratch scratch;
+    vcg::gaussphere::SurfelSurface::Scratch scratch;
     for (int i : {0, 100, 500, 1000}) {
         const vcg::Point3d q = vcg::Point3d::Construct(cube.points[i]), side = vcg::Point3d::Construct(cube.normals[i]);
         double reach = -1;
@@ -120,12 +120,12 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
         EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
         // The surfels blended at a point, read off a surface of the surfels near it, are those
         // of the whole set's surface (facing the point, nearest first).
-        const vcg::tri::SurfelSurface whole = BlendedSurfaceOf(changed);
-        vcg::tri::SurfelSurface::Scratch scratch;
+        const vcg::gaussphere::SurfelSurface whole = BlendedSurfaceOf(changed);
+        vcg::gaussphere::SurfelSurface::Scratch scratch;
         for (int i = 0; i < cube.Size(); i += 97) {
             whole.Project(vcg::Point3d::Construct(cube.points[i]), vcg::Point3d::Construct(cube.normals[i]),
-                          vcg::tri::SurfelErrorParams().maxIterations,
-                          vcg::tri::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
+                          vcg::gaussphere::metric::SurfelErrorParams().maxIterations,
+                          vcg::gaussphere::metric::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
             std::vector<std::pair<float, int>> nearest;
             for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
                 const int c = scratch.queue.getIndex(j);
@@ -390,7 +390,7 @@ TEST(MaxErrorExchange, FitsCreaseSurfelsWhereTheErrorFalls)
         EXPECT_GT(movedAtCreases, 0) << target;
         EXPECT_GE(with.stats.creaseFitsForMaxError, movedAtCreases) << target; // reported in the stats
         const gstest::Measured before = gstest::Measure(cube, without), after = gstest::Measure(cube, with);
-        const vcg::tri::SurfelErrorStats &b = before.stats, &a = after.stats;
+        const vcg::gaussphere::metric::SurfelErrorStats &b = before.stats, &a = after.stats;
         EXPECT_LT(a.normalizedDistance.rms, b.normalizedDistance.rms) << target;
         EXPECT_LE(a.normalizedDistance.max, b.normalizedDistance.max + 1e-7) << target;
         EXPECT_LE(a.normalizedDistance.p999, b.normalizedDistance.p999 + 1e-7) << target;

@@ -91,7 +91,7 @@ inline void ExpectValidResult(const vcg::gaussphere::ResamplingResult &r, const 
 /// The error metric's figures (vcg_ext/surfel_error) for a resampling and its points.
 struct Measured
 {
-    vcg::tri::SurfelErrorStats stats;
+    vcg::gaussphere::metric::SurfelErrorStats stats;
     std::vector<float> distance; ///< per input point, model units
 };
 
@@ -108,14 +108,14 @@ inline Measured Measure(const PointSet &s, const vcg::gaussphere::ResamplingResu
         minor.push_back(surfel.minorAxis);
         blendScale.push_back(surfel.blendScale);
     }
-    vcg::tri::SurfelErrorAttributes attributes;
+    vcg::gaussphere::metric::SurfelErrorAttributes attributes;
     attributes.ellipseMajorAxes = &major;
     attributes.ellipseMinorAxes = &minor;
     attributes.blendScale = &blendScale;
     const std::vector<int> representative(r.representative.begin(), r.representative.end());
     attributes.representative = &representative;
     Measured m;
-    m.stats = vcg::tri::ComputeSurfelError(input, surfels, vcg::tri::SurfelErrorParams(), attributes, &m.distance);
+    m.stats = vcg::gaussphere::metric::ComputeSurfelError(input, surfels, vcg::gaussphere::metric::SurfelErrorParams(), attributes, &m.distance);
     return m;
 }
 

@@ -140,9 +140,9 @@ TEST(SurfelOffset, WeightsAreTheMetrics)
     s.normal = P3(0, 0, 1);
     s.majorAxis = P3(0.06f, 0.08f, 0);   // length 0.1
     s.minorAxis = P3(-0.024f, 0.018f, 0); // length 0.03
-    const vcg::tri::SurfelSurface surface = vcg::tri::MakeEllipseSurfelSurface(
+    const vcg::gaussphere::SurfelSurface surface = vcg::gaussphere::MakeEllipseSurfelSurface(
         {s.position, s.position + P3(1, 0, 0)}, {s.normal, s.normal}, {s.majorAxis, s.majorAxis}, {s.minorAxis, s.minorAxis});
-    const detail::BlendWeight weight(s);
+    const BlendWeight weight(s);
     for (const P3 &x : {P3(0.1f, -0.2f, 0.3f), P3(0.15f, -0.1f, 0.32f), P3(0.05f, -0.22f, 0.25f), P3(0.3f, 0, 0.3f)}) {
         const double expected = surface[0].WeightExponent(vcg::Point3d::Construct(x));
         EXPECT_NEAR(weight.Exponent(s.position, x), expected, 1e-4 * (1 + expected)) << x[0] << " " << x[1] << " " << x[2];

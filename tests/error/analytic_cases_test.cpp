@@ -10,9 +10,9 @@
 #include <random>
 
 using namespace surfel_error_test;
-using vcg::tri::ComputeSurfelError;
-using vcg::tri::SurfelErrorParams;
-using vcg::tri::SurfelErrorStats;
+using vcg::gaussphere::metric::ComputeSurfelError;
+using vcg::gaussphere::metric::SurfelErrorParams;
+using vcg::gaussphere::metric::SurfelErrorStats;
 
 TEST(SurfelErrorAnalytic, IdenticalPlaneIsExact)
 {

@@ -13,10 +13,10 @@
 
 using namespace surfel_error_test;
 using vcg::Point3f;
-using vcg::tri::ComputeSurfelError;
-using vcg::tri::SurfelErrorAttributes;
-using vcg::tri::SurfelErrorParams;
-using vcg::tri::SurfelErrorStats;
+using vcg::gaussphere::metric::ComputeSurfelError;
+using vcg::gaussphere::metric::SurfelErrorAttributes;
+using vcg::gaussphere::metric::SurfelErrorParams;
+using vcg::gaussphere::metric::SurfelErrorStats;
 
 namespace {
 
@@ -201,19 +201,19 @@ TEST(SurfelErrorInputs, PercentileIsNearestRank)
     std::vector<double> oneToThousand;
     for (int i = 1; i <= 1000; ++i)
         oneToThousand.push_back(i);
-    EXPECT_EQ(vcg::tri::NearestRankPercentile(oneToThousand, 99.9), 999);
-    EXPECT_EQ(vcg::tri::NearestRankPercentile(oneToThousand, 50), 500);
-    EXPECT_EQ(vcg::tri::NearestRankPercentile(oneToThousand, 100), 1000);
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile(oneToThousand, 99.9), 999);
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile(oneToThousand, 50), 500);
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile(oneToThousand, 100), 1000);
     std::vector<double> bunnySized;
     for (int i = 34834; i >= 1; --i)
         bunnySized.push_back(i);
-    EXPECT_EQ(vcg::tri::NearestRankPercentile(bunnySized, 99.9), 34800); // ceil(34799.166)
-    EXPECT_EQ(vcg::tri::NearestRankPercentile({4.5}, 99.9), 4.5);
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile(bunnySized, 99.9), 34800); // ceil(34799.166)
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile({4.5}, 99.9), 4.5);
     // 99.9 · 41000 / 100 rounds to just above 40959 in double precision.
     std::vector<double> roundingTrap;
     for (int i = 1; i <= 41000; ++i)
         roundingTrap.push_back(i);
-    EXPECT_EQ(vcg::tri::NearestRankPercentile(roundingTrap, 99.9), 40959);
+    EXPECT_EQ(vcg::gaussphere::NearestRankPercentile(roundingTrap, 99.9), 40959);
 }
 
 TEST(SurfelErrorInputs, SummaryKeepsOutlierInMaxButNotInP999AndSkipsNaN)
@@ -221,7 +221,7 @@ TEST(SurfelErrorInputs, SummaryKeepsOutlierInMaxButNotInP999AndSkipsNaN)
     std::vector<double> errors(999, 1.0);
     errors.push_back(50.0);
     errors.push_back(std::numeric_limits<double>::quiet_NaN());
-    const vcg::tri::ErrorSummary summary = vcg::tri::SummarizeDefined(errors);
+    const vcg::gaussphere::metric::ErrorSummary summary = vcg::gaussphere::metric::SummarizeDefined(errors);
     EXPECT_EQ(summary.count, 1000u);
     EXPECT_EQ(summary.max, 50.0);
     EXPECT_EQ(summary.p999, 1.0);

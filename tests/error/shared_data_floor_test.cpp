@@ -15,8 +15,8 @@
 #include <string>
 
 using surfel_error_test::PointSet;
-using vcg::tri::ComputeSurfelError;
-using vcg::tri::SurfelErrorStats;
+using vcg::gaussphere::metric::ComputeSurfelError;
+using vcg::gaussphere::metric::SurfelErrorStats;
 
 namespace {
 

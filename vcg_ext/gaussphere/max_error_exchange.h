@@ -50,7 +50,8 @@
 #include <utility>
 #include <vector>
 
-#include <vcg_ext/surfel_error/surfel_error.h>
+#include <vcg_ext/surfel/blended_surface.h>
+#include <vcg_ext/surfel/percentile.h>
 
 #include "adaptive_neighbors.h"
 #include "cluster_refinement.h"
@@ -134,7 +135,7 @@ public:
         measured_.reset();
         changedSinceReset_.clear();
         if (n == 0 || surfels.empty()) return true;
-        vcg::tri::SurfelSurface whole = BlendedSurfaceOf(surfels, metric_);
+        SurfelSurface whole = BlendedSurfaceOf(surfels, metric_);
         const int block = 1 << 16;
         for (int start = 0; start < n; start += block) {
             if (step && !step()) return false;
@@ -143,7 +144,7 @@ public:
         }
         // Trials only look surfels up by centre: the tree is kept, the blending data freed
         // (88 B a surfel; 9 B a point at TargetPercentage 10).
-        measured_.reset(new vcg::tri::CenterTree(std::move(whole).ReleaseTree()));
+        measured_.reset(new CenterTree(std::move(whole).ReleaseTree()));
         for (int i = 0; i < n; ++i) KeepWorst(distance_[i], i, max_, worst_);
         return true;
     }
@@ -171,8 +172,8 @@ public:
         // Many changed surfels (the crease fit's groups): their centres are looked up in a tree,
         // the candidates it finds checked as below (the same points, in a time that does not
         // grow with the number of changed surfels times the points).
-        std::unique_ptr<vcg::tri::CenterTree> movedTree;
-        if (moved.size() > 64) movedTree.reset(new vcg::tri::CenterTree(moved));
+        std::unique_ptr<CenterTree> movedTree;
+        if (moved.size() > 64) movedTree.reset(new CenterTree(moved));
 #pragma omp parallel
         {
             double localMax = 0;
@@ -253,7 +254,7 @@ public:
         const int n = int(points_.size());
         std::vector<float> normalError(points_.size(), 0.f);
         if (n == 0 || surfels.empty()) return normalError;
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
+        const SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
         const int block = std::min(n, kNormalErrorBlock);
         std::vector<double> distance(static_cast<size_t>(block));
         std::vector<float> reach(static_cast<size_t>(block));
@@ -272,8 +273,8 @@ public:
     std::vector<int> BlendedAt(int i, const std::vector<Surfel> &current) const
     {
         std::vector<int> local;
-        const vcg::tri::SurfelSurface surface = LocalSurface(current, changedSinceReset_, {i}, local);
-        vcg::tri::SurfelSurface::Scratch scratch;
+        const SurfelSurface surface = LocalSurface(current, changedSinceReset_, {i}, local);
+        SurfelSurface::Scratch scratch;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
         surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
         std::vector<std::pair<float, int>> nearest;
@@ -311,7 +312,7 @@ private:
     /// (ascending: the surfels that differ from that set), and every one of `fresh`. Blended with
     /// the floor on the sizes of the whole set (MakeEllipseSurfelSurface). Every surfel instead
     /// where a radius is infinite or fewer surfels than a projection blends are found.
-    vcg::tri::SurfelSurface LocalSurface(const std::vector<Surfel> &surfels, const std::vector<int> &fresh,
+    SurfelSurface LocalSurface(const std::vector<Surfel> &surfels, const std::vector<int> &fresh,
                                          const std::vector<int> &points, std::vector<int> &local) const
     {
         local.clear();
@@ -341,17 +342,17 @@ private:
         vcg::Box3d box;
         for (const Surfel &s : surfels) box.Add(vcg::Point3d::Construct(s.position));
         return BlendedSurfaceOf(surfels, local.data(), local.size(), metric_,
-                                vcg::tri::surfel_error_detail::SmallestSurfelSize(box));
+                                SmallestSurfelSize(box));
     }
 
     /// Projects the points `which[0, count)` (null: first .. first + count - 1) on `surface`:
     /// their distances and reaches (rounded up to floats) into distance[t], reach[t].
-    void Project(const vcg::tri::SurfelSurface &surface, const int *which, int first, int count, double *distance,
+    void Project(const SurfelSurface &surface, const int *which, int first, int count, double *distance,
                  float *reach, float *normalError = nullptr) const
     {
 #pragma omp parallel
         {
-            vcg::tri::SurfelSurface::Scratch scratch;
+            SurfelSurface::Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
             for (int t = 0; t < count; ++t) {
                 const int i = which ? which[t] : first + t;
@@ -368,11 +369,11 @@ private:
     }
 
     const PointArray &points_, &normals_;
-    const vcg::tri::SurfelErrorParams metric_;
+    const BlendParams metric_;
     double tolerance_;
     std::vector<double> distance_;
     std::vector<float> reach_; // 4 bytes a point: at 20 million points the exchange's largest array
-    std::unique_ptr<vcg::tri::CenterTree> measured_;    // centres of the set Reset measured
+    std::unique_ptr<CenterTree> measured_;    // centres of the set Reset measured
     std::vector<int> changedSinceReset_;                // surfels of the current set not as measured_ has them
     double max_ = 0;
     int worst_ = -1;
@@ -491,9 +492,9 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         figures[size_t(i)] = distances.Distance(i);
         sumOfSquares += figures[size_t(i)] * figures[size_t(i)]; // in point order: the same for any thread count
     }
-    const double distanceLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
+    const double distanceLimit = NearestRankPercentile(std::move(figures), 99.9);
     figures.assign(normalError.begin(), normalError.end());
-    const double normalLimit = vcg::tri::NearestRankPercentile(std::move(figures), 99.9);
+    const double normalLimit = NearestRankPercentile(std::move(figures), 99.9);
     int distanceBeyond = 0, normalBeyond = 0;
     for (int i = 0; i < n; ++i) {
         distanceBeyond += distances.Distance(i) > distanceLimit;
@@ -547,7 +548,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
 
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
 /// to the blended surface of the surfels `maker` makes of them (file header), measured as
-/// vcg::tri::ComputeSurfelError measures it (default SurfelErrorParams) over the bounding-box
+/// metric::ComputeSurfelError measures it (default BlendParams) over the bounding-box
 /// `diagonal` of the points. `progress(round)` is called before the first measure, between its
 /// steps (generation, fit, blocks of points, the merge pairs' set-up) and before each trial (round
 /// from 0); when it returns false the exchange stops with cancelled = true and the clusters of the

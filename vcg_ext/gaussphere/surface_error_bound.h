@@ -28,7 +28,7 @@
 #include <functional>
 #include <vector>
 
-#include <vcg_ext/surfel_error/surfel_error.h>
+#include <vcg_ext/surfel/blended_surface.h>
 
 #include "cluster_refinement.h"
 #include "clustering.h"
@@ -48,8 +48,8 @@ constexpr float kMinBlendScale = 0.125f;
 /// `metric`'s parameters; `smallestSize` > 0 replaces the floor on their sizes taken from their box
 /// (MakeEllipseSurfelSurface), so that a part of a set blends as in the whole set.
 /// \pre count > 0, surfels as GenerateSurfels makes them.
-inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels, const int *which, size_t count,
-                                                const vcg::tri::SurfelErrorParams &metric, double smallestSize = 0)
+inline SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels, const int *which, size_t count,
+                                                const BlendParams &metric, double smallestSize = 0)
 {
     std::vector<vcg::Point3f> centers(count), normals(count), major(count), minor(count);
     std::vector<float> blendScale(count);
@@ -61,12 +61,12 @@ inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfe
         minor[t] = s.minorAxis;
         blendScale[t] = s.blendScale;
     }
-    return vcg::tri::MakeEllipseSurfelSurface(centers, normals, major, minor, metric, &blendScale, smallestSize);
+    return MakeEllipseSurfelSurface(centers, normals, major, minor, metric, &blendScale, smallestSize);
 }
 
 /// The blended surface of all of `surfels`.
-inline vcg::tri::SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels,
-                                                const vcg::tri::SurfelErrorParams &metric = vcg::tri::SurfelErrorParams())
+inline SurfelSurface BlendedSurfaceOf(const std::vector<Surfel> &surfels,
+                                                const BlendParams &metric = BlendParams())
 {
     return BlendedSurfaceOf(surfels, nullptr, surfels.size(), metric);
 }
@@ -84,7 +84,7 @@ struct SurfaceErrorBoundResult
 
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
 /// maxDistance of the blended surface of the surfels GenerateSurfels makes from them, measured
-/// as vcg::tri::ComputeSurfelError measures (default SurfelErrorParams), narrowing one-point
+/// as metric::ComputeSurfelError measures (default BlendParams), narrowing one-point
 /// surfels as the file header says, or until nothing near a point beyond it can be split or
 /// narrowed, or after maxRounds projections. `progress(r, f)` is
 /// called from the calling thread during projection round r (from 1) with the fraction f of
@@ -105,7 +105,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
                                                         const std::function<bool(int, double)> &progress = nullptr,
                                                         const std::function<void(std::vector<Surfel> &)> &adjustSurfels = nullptr)
 {
-    const vcg::tri::SurfelErrorParams metric;
+    const BlendParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
     const int n = int(points.size());
     SurfaceErrorBoundResult result;
@@ -116,7 +116,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
         blendScale.resize(clusters.clusterCount, 1.f);
         result.surfels = GenerateSurfels(points, normals, spacing, clusters, narrowedParam);
         if (adjustSurfels) adjustSurfels(result.surfels);
-        const vcg::tri::SurfelSurface surface = BlendedSurfaceOf(result.surfels, metric);
+        const SurfelSurface surface = BlendedSurfaceOf(result.surfels, metric);
         ++result.rounds;
         // Clusters to split: those of the surfels nearest to the projection of a point beyond
         // the bound (the ones the blend draws from, and a few facing away), and the point's own.
@@ -134,7 +134,7 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
             const int end = std::min(n, start + block);
 #pragma omp parallel reduction(+ : above) reduction(max : worst)
             {
-                vcg::tri::SurfelSurface::Scratch scratch;
+                SurfelSurface::Scratch scratch;
                 std::vector<int> local, localNarrow;
 #pragma omp for schedule(dynamic, 1024)
                 for (int i = start; i < end; ++i) {

@@ -10,27 +10,11 @@
 
 #include <vcg/complex/complex.h>
 
-#include "surfel_generation.h"
+#include <vcg_ext/surfel/surfel.h>
+#include <vcg_ext/surfel/surfel_attributes.h>
 
 namespace vcg {
 namespace gaussphere {
-
-constexpr const char *kMajorAxisAttribute = "EllipseMajorAxis";
-constexpr const char *kMinorAxisAttribute = "EllipseMinorAxis";
-constexpr const char *kRepresentativeAttribute = "SurfelIndex";
-constexpr const char *kBlendScaleAttribute = "SurfelBlendScale";
-constexpr const char *kFitOffsetAttribute = "SurfelFitOffset";
-
-/// The per-vertex float attribute `name` of `mesh` when `wanted` (created if needed); when not,
-/// none: an old one is deleted (Clear() keeps attributes) and the handle returned is invalid.
-template <class MeshType>
-typename MeshType::template PerVertexAttributeHandle<float> OptionalPerVertexFloat(MeshType &mesh, const char *name,
-                                                                                   bool wanted)
-{
-    if (wanted) return vcg::tri::Allocator<MeshType>::template GetPerVertexAttribute<float>(mesh, name);
-    if (vcg::tri::HasPerVertexAttribute(mesh, name)) vcg::tri::Allocator<MeshType>::DeletePerVertexAttribute(mesh, name);
-    return typename MeshType::template PerVertexAttributeHandle<float>();
-}
 
 /// Replaces the content of `mesh` with one vertex per surfel.
 template <class MeshType>

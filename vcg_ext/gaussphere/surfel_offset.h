@@ -34,6 +34,7 @@
 #include <vector>
 
 #include <vcg/space/point3.h>
+#include <vcg_ext/surfel/blended_surface.h>
 
 #include "adaptive_neighbors.h"
 #include "clustering.h"
@@ -42,44 +43,6 @@
 namespace vcg {
 namespace gaussphere {
 
-/// Gaussian width of the blend, in units of each surfel's semi-axes: the default of the
-/// metric's SurfelErrorParams::widthFactor.
-constexpr double kBlendWidthFactor = 1.5;
-
-namespace detail {
-
-/// The shape of a surfel's Gaussian weight in the blend, set up for repeated evaluation:
-/// vcg_ext/surfel_error's BlendingSurfel::WeightExponent, the major width across the tangent
-/// plane and along the normal, the minor width along the minor axis (20 bytes per surfel: at a
-/// million points the surfel stage is where the memory peaks).
-struct BlendWeight
-{
-    vcg::Point3f minorDirection{0, 0, 0};
-    float inverseMajor2 = 0;  ///< 1 / (sigma a)^2
-    float minorExcess = 0;    ///< 1 / (sigma b)^2 - 1 / (sigma a)^2
-
-    BlendWeight() = default;
-    explicit BlendWeight(const Surfel &s)
-    {
-        const float sigma2 = float(kBlendWidthFactor * kBlendWidthFactor);
-        const float scale2 = s.blendScale * s.blendScale; // the blend's widths only (surface_error_bound.h)
-        const float major2 = scale2 * s.majorAxis.SquaredNorm(), minor2 = scale2 * s.minorAxis.SquaredNorm();
-        // GenerateSurfels' axes are never zero; should one be, the surfel weighs 1 everywhere.
-        if (!(major2 > 0) || !(minor2 > 0)) return;
-        minorDirection = s.minorAxis / s.minorAxis.Norm();
-        inverseMajor2 = 1.f / (sigma2 * major2);
-        minorExcess = 1.f / (sigma2 * minor2) - inverseMajor2;
-    }
-    /// The exponent at x of the surfel centred at `centre`.
-    float Exponent(const vcg::Point3f &centre, const vcg::Point3f &x) const
-    {
-        const vcg::Point3f d = x - centre;
-        const float alongMinor = d.dot(minorDirection);
-        return d.SquaredNorm() * inverseMajor2 + alongMinor * alongMinor * minorExcess;
-    }
-};
-
-} // namespace detail
 
 /// Neighbours of a point whose clusters' surfels are blended at it (with its own): the nearest
 /// ones, as many as the metric blends surfels.
@@ -131,7 +94,7 @@ inline bool StaysAtCrease(const FlatVector<char> *creasePoints, const std::vecto
 
 /// The move along its normal that FitSurfelOffsets gives the surfel of cluster c (members
 /// [begin, end), in increasing order), from the unfitted `surfels` of every cluster and
-/// `weightOf(l)`, the detail::BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
+/// `weightOf(l)`, the BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
 /// a member flagged in creasePoints, or no move within maxPlaneDistance).
 /// With `atCreases`, the move is computed for crease clusters and narrowed blends too (the
 /// exchanges' last step, ExchangeForMaxError, keeps it only where the measure allows).
@@ -212,14 +175,14 @@ inline SurfelOffsetResult FitSurfelOffsets(const PointArray &points, const Point
                                            std::vector<Surfel> &surfels, double maxPlaneDistance = 0)
 {
     const int count = clusters.clusterCount;
-    std::vector<detail::BlendWeight> weight(count);
+    std::vector<BlendWeight> weight(count);
 #pragma omp parallel for schedule(static)
-    for (int c = 0; c < count; ++c) weight[c] = detail::BlendWeight(surfels[c]);
+    for (int c = 0; c < count; ++c) weight[c] = BlendWeight(surfels[c]);
     std::vector<float> offset(count, 0.f);
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < count; ++c)
         offset[c] = SurfelOffsetOf(points, normals, graph, clusters.label, creasePoints, surfels,
-                                   [&weight](int l) -> const detail::BlendWeight & { return weight[l]; }, c,
+                                   [&weight](int l) -> const BlendWeight & { return weight[l]; }, c,
                                    members.begin(c), members.end(c), maxPlaneDistance);
     SurfelOffsetResult result;
     for (int c = 0; c < count; ++c) {

@@ -162,7 +162,7 @@ public:
         std::vector<int> refit(dirty);
         for (int c = 0; c < baseCount; ++c)
             if (reached[size_t(c)]) refit.push_back(c);
-        auto weightOf = [&s](int l) { return detail::BlendWeight(s.unfitted[size_t(l)]); };
+        auto weightOf = [&s](int l) { return BlendWeight(s.unfitted[size_t(l)]); };
         std::vector<float> offset(refit.size());
 #pragma omp parallel for schedule(dynamic, 16)
         for (int t = 0; t < int(refit.size()); ++t) {
@@ -192,7 +192,7 @@ public:
         if (!recipe_.fitOffsets) return moves;
         const int count = clusters.clusterCount;
         std::vector<float> offset(size_t(count), 0.f);
-        auto weightOf = [&set](int l) { return detail::BlendWeight(set.unfitted[size_t(l)]); };
+        auto weightOf = [&set](int l) { return BlendWeight(set.unfitted[size_t(l)]); };
 #pragma omp parallel for schedule(dynamic, 64)
         for (int c = 0; c < count; ++c) {
             if (members.Size(c) < std::max(1, minMembers) ||

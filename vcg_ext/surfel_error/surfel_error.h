@@ -71,6 +71,8 @@
 
 #include <vcg/complex/complex.h>
 #include <vcg/space/index/kdtree/kdtree.h>
+#include <vcg_ext/surfel/blended_surface.h>
+#include <vcg_ext/surfel/percentile.h>
 #include <wrap/callback.h>
 
 #include <algorithm>
@@ -84,23 +86,16 @@
 #include <vector>
 
 namespace vcg {
-namespace tri {
+namespace gaussphere {
+namespace metric {
 
-/// Parameters of ComputeSurfelError(); the defaults are the ones documented in the file header.
-struct SurfelErrorParams
+/// Parameters of ComputeSurfelError(): the blend's (BlendParams: k = 8, sigma = 1.5, 10 steps,
+/// tolerance 1e-7 of the diagonal) and the size of surfels without axes or radius.
+struct SurfelErrorParams : BlendParams
 {
-    /// k: number of surfels (nearest centers) blended at each evaluation. Default 8.
-    int neighborCount = 8;
-    /// σ: Gaussian width in units of each surfel's semi-axes (or radius, or spacing). Default 1.5.
-    double widthFactor = 1.5;
     /// Surfels with neither ellipse axes nor radius take as size the mean distance to this many
     /// nearest other surfel centers. Default 6.
     int spacingNeighborCount = 6;
-    /// Upper bound on projection steps per point. Default 10.
-    int maxIterations = 10;
-    /// A projection has converged when its last step is at most this fraction of the
-    /// bounding-box diagonal of S. Default 1e-7, far below any error worth reporting.
-    double convergenceTolerance = 1e-7;
 };
 
 /// Optional per-vertex data beside the two meshes, as plain arrays indexed like mesh.vert.
@@ -144,18 +139,6 @@ struct SurfelErrorStats
     ErrorSummary normalToBlended;     ///< L2,1 form (b): ‖n_q − n(q0)‖
 };
 
-/// Nearest-rank percentile: the smallest value v such that at least `percent` % of the values
-/// are ≤ v. \pre `values` is non-empty, 0 < percent ≤ 100.
-inline double NearestRankPercentile(std::vector<double> values, double percent)
-{
-    // The relative shrink absorbs the rounding of percent·n/100 (99.9·41000/100 is not exactly
-    // 40959 in binary), which would otherwise step to the next rank.
-    const double exactRank = percent * double(values.size()) / 100.0 * (1.0 - 1e-12);
-    const std::size_t rank =
-        std::min(values.size(), std::max<std::size_t>(1, std::size_t(std::ceil(exactRank))));
-    std::nth_element(values.begin(), values.begin() + (rank - 1), values.end());
-    return values[rank - 1];
-}
 
 /// Summary of the non-NaN entries of `perPoint` (NaN marks a point the error is undefined for).
 inline ErrorSummary SummarizeDefined(const std::vector<double>& perPoint)
@@ -208,194 +191,9 @@ inline void CheckCoordinates(const Point3d& p, std::size_t vertex, const char* s
         }
 }
 
-/// The unit vector along `n`, or the zero vector when `n` is zero or not finite.
-inline Point3d UnitOrZero(const Point3d& n)
-{
-    const double length = n.Norm();
-    if (!std::isfinite(length) || length == 0)
-        return Point3d(0, 0, 0);
-    return n / length;
-}
 
-/// One usable surfel of S', in double precision, with its Gaussian weight.
-struct BlendingSurfel
-{
-    Point3d center;
-    Point3d normal;                  ///< unit
-    Point3d minorDirection{0, 0, 0}; ///< unit tangent along the minor axis; zero if circular
-    double majorInverseWidth2 = 0;   ///< 1 / (σ a)², also applied along the normal
-    double minorInverseWidth2 = 0;   ///< 1 / (σ b)²
 
-    /// Weight exponent at x: w(x) = exp(−WeightExponent(x)).
-    double WeightExponent(const Point3d& x) const
-    {
-        const Point3d offset = x - center;
-        const double alongMinor = offset.dot(minorDirection);
-        return offset.SquaredNorm() * majorInverseWidth2 +
-               alongMinor * alongMinor * (minorInverseWidth2 - majorInverseWidth2);
-    }
-};
 
-/// k-nearest queries on the surfel centers (vcg::KdTree in single precision).
-class CenterTree
-{
-public:
-    using Queue = KdTree<float>::PriorityQueue;
-
-    /// \pre `centers` is non-empty.
-    explicit CenterTree(const std::vector<Point3d>& centers)
-    {
-        std::vector<Point3f> singlePrecision;
-        singlePrecision.reserve(centers.size());
-        for (const Point3d& c : centers)
-            singlePrecision.push_back(Point3f::Construct(c));
-        tree_.reset(new KdTree<float>(
-            ConstDataWrapper<Point3f>(singlePrecision.data(), int(singlePrecision.size()))));
-    }
-
-    /// Fills `queue` with the (at most) k centers nearest to x; the queue is a heap, not sorted.
-    void Nearest(const Point3d& x, int k, Queue& queue) const
-    {
-        // vcg's queries are thread-safe but not declared const.
-        tree_->doQueryK(Point3f::Construct(x), k, queue);
-    }
-
-    /// Appends to `indices` the centers closer to x than `radius` in single precision (callers
-    /// widen the radius by the rounding they must cover); `scratch` receives their squared distances.
-    void Within(const Point3d& x, double radius, std::vector<unsigned>& indices, std::vector<float>& scratch) const
-    {
-        tree_->doQueryDist(Point3f::Construct(x), float(radius), indices, scratch);
-    }
-
-private:
-    std::unique_ptr<KdTree<float>> tree_;
-};
-
-/// The surface defined by the surfels of S' through the almost-orthogonal MLS projection.
-class SurfelSurface
-{
-public:
-    struct Projection
-    {
-        Point3d foot;      ///< q0
-        Point3d normal;    ///< n(q0), unit
-        int nearestSurfel; ///< surfel whose center is nearest to q
-        bool converged;
-    };
-
-    /// \pre `surfels` is non-empty and `tree` indexes their centers in the same order.
-    SurfelSurface(std::vector<BlendingSurfel> surfels, CenterTree tree, int neighborCount)
-        : surfels_(std::move(surfels)), tree_(std::move(tree)), neighborCount_(neighborCount)
-    {}
-
-    const BlendingSurfel& operator[](int i) const { return surfels_[i]; }
-
-    /// Appends the surfels whose centers lie within `radius` of x (CenterTree::Within).
-    void SurfelsWithin(const Point3d& x, double radius, std::vector<unsigned>& indices, std::vector<float>& scratch) const
-    {
-        tree_.Within(x, radius, indices, scratch);
-    }
-
-    /// The tree of the centers, the surface given up (for a caller that only queries centers
-    /// afterwards: the blending data is ~3/4 of a surface's memory).
-    CenterTree ReleaseTree() && { return std::move(tree_); }
-
-    /// Per-thread working memory of Project().
-    struct Scratch
-    {
-        CenterTree::Queue queue;
-        std::vector<double> exponents;
-    };
-
-    /// Projects q; `tolerance` is an absolute step length. `side` (unit, or zero for none) picks
-    /// the sheet on thin parts: only surfels with n_i · side > 0 are blended, unless none of the
-    /// k nearest is, in which case the side of the heaviest surfel is used.
-    /// `reach`, if given, receives a distance from q beyond which no surfel took part in the
-    /// projection: adding, removing or changing only surfels whose centres lie farther than
-    /// that from q leaves its result unchanged, up to the order in which a rebuilt tree sums the
-    /// weights and to which of several centres tied at the k-th distance it returns (infinite
-    /// when fewer than k surfels exist).
-    Projection Project(const Point3d& q, const Point3d& side, int maxIterations, double tolerance,
-                       Scratch& scratch, double* reach = nullptr) const
-    {
-        Projection result;
-        result.foot = q;
-        result.converged = false;
-        if (reach) *reach = 0;
-        for (int step = 0; step < maxIterations && !result.converged; ++step) {
-            tree_.Nearest(result.foot, neighborCount_, scratch.queue);
-            if (reach) {
-                // The k-th nearest centre bounds this step's neighbourhood: a centre farther than
-                // that from the foot cannot enter it. The tree works in floats: a margin of 1e-6
-                // of the coordinates' magnitude covers their rounding.
-                const double kth = scratch.queue.getNofElements() < neighborCount_
-                                       ? std::numeric_limits<double>::infinity()
-                                       : std::sqrt(double(scratch.queue.getTopWeight()));
-                const double stepReach = (result.foot - q).Norm() + kth;
-                *reach = std::max(*reach, stepReach + 1e-6 * (stepReach + q.Norm()));
-            }
-            if (step == 0)
-                result.nearestSurfel = NearestInQueue(scratch.queue);
-            Point3d average;
-            BlendAt(result.foot, side, scratch.queue, scratch.exponents, average, result.normal);
-            const double offset = (result.foot - average).dot(result.normal);
-            result.foot -= result.normal * offset;
-            result.converged = std::abs(offset) <= tolerance;
-        }
-        return result;
-    }
-
-private:
-    static int NearestInQueue(const CenterTree::Queue& queue)
-    {
-        int nearest = 0;
-        for (int j = 1; j < queue.getNofElements(); ++j)
-            if (queue.getWeight(j) < queue.getWeight(nearest))
-                nearest = j;
-        return queue.getIndex(nearest);
-    }
-
-    /// a(x) and n(x) over the surfels in `queue` that face `side` (see Project());
-    /// `exponents` is scratch space.
-    void BlendAt(const Point3d& x, const Point3d& side, const CenterTree::Queue& queue,
-                 std::vector<double>& exponents, Point3d& average, Point3d& normal) const
-    {
-        const int count = queue.getNofElements();
-        exponents.resize(count);
-        int heaviest = -1, heaviestFacing = -1;
-        for (int j = 0; j < count; ++j) {
-            const BlendingSurfel& s = surfels_[queue.getIndex(j)];
-            exponents[j] = s.WeightExponent(x);
-            if (heaviest < 0 || exponents[j] < exponents[heaviest])
-                heaviest = j;
-            if (s.normal.dot(side) > 0 && (heaviestFacing < 0 || exponents[j] < exponents[heaviestFacing]))
-                heaviestFacing = j;
-        }
-        const int reference = heaviestFacing >= 0 ? heaviestFacing : heaviest;
-        const Point3d& facing = heaviestFacing >= 0 ? side : surfels_[queue.getIndex(heaviest)].normal;
-        double weightSum = 0;
-        Point3d weightedCenters(0, 0, 0), weightedNormals(0, 0, 0);
-        for (int j = 0; j < count; ++j) {
-            const BlendingSurfel& s = surfels_[queue.getIndex(j)];
-            // Surfels facing away belong to the other side of a thin part; blending them would
-            // pull a(x) between the two sheets and cancel n(x).
-            if (s.normal.dot(facing) <= 0)
-                continue;
-            // Relative to the heaviest blended weight, so the weights never all underflow.
-            const double w = std::exp(exponents[reference] - exponents[j]);
-            weightSum += w;
-            weightedCenters += s.center * w;
-            weightedNormals += s.normal * w;
-        }
-        average = weightedCenters / weightSum;
-        // Every blended normal lies in the open hemisphere around `facing`, so the sum is not zero.
-        normal = weightedNormals / weightedNormals.Norm();
-    }
-
-    std::vector<BlendingSurfel> surfels_;
-    CenterTree tree_;
-    int neighborCount_;
-};
 
 inline void CheckParams(const SurfelErrorParams& p)
 {
@@ -435,37 +233,17 @@ inline void CheckAttributes(const SurfelErrorAttributes& a, std::size_t original
 inline bool EllipseOf(const SurfelErrorAttributes& a, std::size_t vertex, const Point3d& normal,
                       double& major, double& minor, Point3d& minorDirection)
 {
-    if (a.ellipseMajorAxes == nullptr)
-        return false;
-    const Point3d majorAxis = Point3d::Construct((*a.ellipseMajorAxes)[vertex]);
-    const Point3d tangentMajor = UnitOrZero(majorAxis - normal * majorAxis.dot(normal));
-    major = majorAxis.Norm();
-    minor = Point3d::Construct((*a.ellipseMinorAxes)[vertex]).Norm();
-    if (tangentMajor == Point3d(0, 0, 0) || !std::isfinite(minor))
-        return false;
-    minorDirection = normal ^ tangentMajor;
-    return true;
+    return a.ellipseMajorAxes != nullptr && EllipseWidths((*a.ellipseMajorAxes)[vertex], (*a.ellipseMinorAxes)[vertex],
+                                                          normal, major, minor, minorDirection);
 }
 
-/// Floor on the surfel sizes for centers spanning `box`, so that duplicates or degenerate
-/// ellipses keep finite weights; any positive value does when all centers coincide.
-inline double SmallestSurfelSize(const Box3d& box) { return box.Diag() > 0 ? 1e-6 * box.Diag() : 1.0; }
 
 /// The blend scale of vertex v of S' (SurfelErrorAttributes::blendScale), 1 when absent or invalid.
 inline double BlendScaleOf(const SurfelErrorAttributes& a, std::size_t vertex)
 {
-    const double scale = a.blendScale ? double((*a.blendScale)[vertex]) : 1.0;
-    return scale > 0 && scale <= 1 ? scale : 1.0;
+    return a.blendScale ? UsableBlendScale((*a.blendScale)[vertex]) : 1.0;
 }
 
-/// The Gaussian widths of a surfel with semi-axes (major, minor), floored at smallestSize.
-inline void SetWidths(double major, double minor, double sigma, double smallestSize, BlendingSurfel& s)
-{
-    major = std::max(major, smallestSize);
-    minor = std::max(minor, smallestSize);
-    s.majorInverseWidth2 = 1.0 / (sigma * major * sigma * major);
-    s.minorInverseWidth2 = 1.0 / (sigma * minor * sigma * minor);
-}
 
 /// Mean distance from centers[i] to its `count` nearest other centers (0 if it has none).
 inline double LocalSpacing(const CenterTree& tree, const std::vector<Point3d>& centers, std::size_t i,
@@ -543,58 +321,7 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
 
 } // namespace surfel_error_detail
 
-using surfel_error_detail::CenterTree;
-using surfel_error_detail::SurfelSurface;
 
-/** The surface of elliptical surfels given as arrays (what a resampler has before any mesh is
- * written), with the operator of ComputeSurfelError: project a point q with
- * surface.Project(q, n_q, params.maxIterations, params.convergenceTolerance × diagonal, scratch);
- * afterwards scratch.queue holds the surfels blended at the last step.
- * \pre the four arrays have the same non-zero size; centers finite, normals of unit length,
- *      majorAxes[i] and minorAxes[i] tangent semi-axis vectors, the major one non-zero;
- *      blendScale, if given, of the same size (see SurfelErrorAttributes::blendScale).
- * smallestSize > 0 sets the floor on the surfel sizes (SmallestSurfelSize) instead of the
- * centers' box: a surface of some of a set's surfels then blends them as the whole set's does.
- */
-inline SurfelSurface MakeEllipseSurfelSurface(const std::vector<Point3f>& centers,
-                                              const std::vector<Point3f>& normals,
-                                              const std::vector<Point3f>& majorAxes,
-                                              const std::vector<Point3f>& minorAxes,
-                                              const SurfelErrorParams& params = SurfelErrorParams(),
-                                              const std::vector<float>* blendScale = nullptr,
-                                              double smallestSize = 0)
-{
-    using namespace surfel_error_detail;
-    CheckParams(params);
-    const std::size_t count = centers.size();
-    if (count == 0 || normals.size() != count || majorAxes.size() != count || minorAxes.size() != count ||
-        (blendScale && blendScale->size() != count))
-        throw std::invalid_argument("surfel surface: give one center, normal and pair of axes per surfel");
-    std::vector<BlendingSurfel> surfels(count);
-    std::vector<Point3d> centersD(count);
-    Box3d box;
-    for (std::size_t i = 0; i < count; ++i) {
-        centersD[i] = Point3d::Construct(centers[i]);
-        box.Add(centersD[i]);
-    }
-    if (!(smallestSize > 0))
-        smallestSize = SmallestSurfelSize(box);
-    SurfelErrorAttributes axes;
-    axes.ellipseMajorAxes = &majorAxes;
-    axes.ellipseMinorAxes = &minorAxes;
-    axes.blendScale = blendScale;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < long(count); ++i) {
-        BlendingSurfel& s = surfels[i];
-        s.center = centersD[i];
-        s.normal = UnitOrZero(Point3d::Construct(normals[i]));
-        double major = 0, minor = 0;
-        EllipseOf(axes, std::size_t(i), s.normal, major, minor, s.minorDirection);
-        const double scale = BlendScaleOf(axes, std::size_t(i));
-        SetWidths(scale * major, scale * minor, params.widthFactor, smallestSize, s);
-    }
-    return SurfelSurface(std::move(surfels), CenterTree(centersD), params.neighborCount);
-}
 
 /** Measures how well the surfels S' approximate the oriented point set S (see the file header
  * for the exact operator and figures).
@@ -718,7 +445,8 @@ SurfelErrorStats ComputeSurfelError(const OriginalMesh& original, const Simplifi
     return stats;
 }
 
-} // namespace tri
+} // namespace metric
+} // namespace gaussphere
 } // namespace vcg
 
 #endif // VCG_EXT_SURFEL_ERROR_SURFEL_ERROR_H
