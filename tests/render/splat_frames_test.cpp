@@ -30,7 +30,7 @@ SurfelArrays randomCloud(int n, float noise, unsigned seed)
     for (int i = 0; i < n; ++i) {
         Eigen::Vector3f d(gaussian(random), gaussian(random), gaussian(random));
         d.normalize();
-        if (i % 50 == 0) // a clump: a point very near the previous one
+        if (i % 50 == 1) // a clump: a point very near the previous one
             d = Eigen::Map<const Eigen::Vector3f>(&s.normals[s.normals.size() - 3]) + Eigen::Vector3f::Constant(1e-5f);
         const Eigen::Vector3f p = d * (1 + uniform(random)) * (i % 5000 == 1 ? 4.0f : 1.0f);
         s.positions.insert(s.positions.end(), p.data(), p.data() + 3);
