@@ -68,6 +68,25 @@ TEST(SplatFrames, RadiiMatchTheKdTree)
     }
 }
 
+// Degenerate clouds: every point at one place, on a line, on a plane, on a regular grid (ties).
+TEST(SplatFrames, DegenerateCloudsMatchTheKdTree)
+{
+    std::vector<std::vector<float>> clouds(4);
+    for (int i = 0; i < 2000; ++i) {
+        const float t = float(i) / 2000;
+        clouds[0].insert(clouds[0].end(), {0.5f, -2.0f, 7.0f});
+        clouds[1].insert(clouds[1].end(), {t, 2 * t, -t});
+        clouds[2].insert(clouds[2].end(), {std::sin(37.0f * i), std::cos(91.0f * i), 0.0f});
+        clouds[3].insert(clouds[3].end(), {float(i % 10), float(i / 10 % 10), float(i / 100)});
+    }
+    for (std::size_t c = 0; c < clouds.size(); ++c) {
+        const std::vector<float> grid = nearestNeighbourRadii(clouds[c], 8);
+        const std::vector<float> tree = kdTreeRadii(clouds[c], 8);
+        for (std::size_t i = 0; i < grid.size(); ++i)
+            ASSERT_NEAR(grid[i], tree[i], 1e-5f * tree[i] + 1e-9f) << "cloud " << c << ", point " << i;
+    }
+}
+
 TEST(SplatFrames, FewerPointsThanNeighbours)
 {
     const std::vector<float> three = {0, 0, 0, 1, 0, 0, 0, 3, 0};
