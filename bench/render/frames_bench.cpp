@@ -1,8 +1,8 @@
 // splat_frames_bench: times the splat sizes of a raw point cloud (the distance to each point's
 // k-th nearest neighbour, what the render plugin and splat_render compute for clouds without
 // ellipses or radii): splat::nearestNeighbourRadii (the project's grid, parallel) against its
-// peer, vcglib's kd-tree (built on one thread, queried in parallel), on the same points in the
-// same run. Checks that both give the same radii.
+// peer, vcglib's kd-tree (built on one thread, as vcglib builds it, and queried in parallel), on
+// the same points in the same run. Checks that both give the same radii.
 //
 //   splat_frames_bench [--points N] [--ply FILE] [--k K] [--repeat R]
 // Without --ply: N points (default 5,000,000) on a bumpy sphere, uniformly random, with noise.
@@ -71,7 +71,7 @@ std::vector<float> bumpySphere(std::size_t count)
     return positions;
 }
 
-// The peer: vcglib's kd-tree, as the renderer used it: built on one thread, queried in parallel.
+// The peer: vcglib's kd-tree, built on one thread (vcglib has no parallel build), queried in parallel.
 std::vector<float> kdTreeRadii(const std::vector<float> &positions, int k)
 {
     const int count = int(positions.size() / 3);

@@ -1,7 +1,6 @@
 // Splat sizes of raw clouds from the neighbour grid (nearestNeighbourRadii) against vcglib's
 // kd-tree on the same points: the same radii, the same coverage once rendered.
 
-#include "gl_program.h"
 #include "render_test_support.h"
 
 #include <vcg/space/index/kdtree/kdtree.h>
@@ -131,24 +130,6 @@ TEST(SplatFrames, CoverageMatchesTheKdTreeFrames)
     }
     EXPECT_GT(coveredA, size * size / 3); // the sphere fills most of the view
     EXPECT_LE(differing, coveredB / 1000); // radii equal to float rounding: at most a few edge pixels
-}
-
-// The driver reports compile errors in the source string numbers of the #line directives that
-// embed_shaders.cmake writes, and GlProgram says which file each number stands for.
-TEST(SplatFrames, ShaderErrorsNameTheFileAndLine)
-{
-    const shaders::ShaderSource vertex{"#version 330\nvoid main() { gl_Position = vec4(0.0); }\n", "0: v.vert.glsl"};
-    const shaders::ShaderSource fragment{"#version 330\n#line 1 1\nfloat one() { return 1.0; }\n#line 3 0\n"
-                                         "out vec4 color;\nvoid main() { color = vec4(undeclared); }\n",
-                                         "0: f.frag.glsl, 1: one.glsl"};
-    try {
-        GlProgram program("broken", vertex, fragment);
-        FAIL() << "an undeclared identifier compiled";
-    } catch (const std::runtime_error &error) {
-        const std::string message = error.what();
-        EXPECT_NE(message.find("0: f.frag.glsl, 1: one.glsl"), std::string::npos) << message;
-        EXPECT_NE(message.find("0:4"), std::string::npos) << message;
-    }
 }
 
 } // namespace
