@@ -2,8 +2,8 @@
 #   cmake -DSHADER_DIR=<shaders> -DTEMPLATE=<splat_shaders.cpp.in> -DOUTPUT_CPP=<file.cpp>
 #         -DEXPANDED_DIR=<dir> -P embed_shaders.cmake
 # A stage is a file <name>.vert.glsl or <name>.frag.glsl; it becomes the function
-# <name>Vertex() or <name>Fragment() of splat_shaders.h. A line `#include "<file>.glsl"` in a
-# stage is replaced by that file (which includes nothing itself), between #line directives:
+# <name>Vertex() or <name>Fragment() of splat_shaders.h. A line starting `#include "<file>.glsl"`
+# in a stage is replaced by that file (which includes nothing itself), between #line directives:
 # source string 0 is the stage, 1, 2, ... its includes in order, so a compiler's "S:L" names
 # line L of the file that source string S stands for (ShaderSource::sourceStrings lists them).
 # The expanded stages are also written to EXPANDED_DIR/<name>.vert|frag for glslangValidator.
@@ -45,7 +45,9 @@ foreach(stage ${stages})
   set(stringNumber 0)
   set(line 1) # line of the stage file at which `rest` starts
   while(TRUE)
-    string(FIND "${rest}" "#include \"" at)
+    # A directive starts a line: with a newline put in front, "\n#include" found at `at` means
+    # the directive starts at `at` in `rest`.
+    string(FIND "\n${rest}" "\n#include \"" at)
     if(at EQUAL -1)
       break()
     endif()
