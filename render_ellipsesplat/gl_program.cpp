@@ -15,11 +15,10 @@ std::string shaderLog(GLuint shader)
     return log.data();
 }
 
-GLuint compile(const std::string &programName, GLenum stage, const std::string &source)
+GLuint compile(const std::string &programName, GLenum stage, const shaders::ShaderSource &source)
 {
     GLuint shader = glCreateShader(stage);
-    const char *text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
+    glShaderSource(shader, 1, &source.text, nullptr);
     glCompileShader(shader);
     GLint ok = GL_FALSE;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -27,14 +26,16 @@ GLuint compile(const std::string &programName, GLenum stage, const std::string &
         std::string log = shaderLog(shader);
         glDeleteShader(shader);
         throw std::runtime_error(programName + (stage == GL_VERTEX_SHADER ? " vertex" : " fragment") +
-                                 " shader does not compile:\n" + log);
+                                 " shader does not compile (source strings " +
+                                 source.sourceStrings + "):\n" + log);
     }
     return shader;
 }
 
 } // namespace
 
-GlProgram::GlProgram(const std::string &name, const std::string &vertexSource, const std::string &fragmentSource)
+GlProgram::GlProgram(const std::string &name, const shaders::ShaderSource &vertexSource,
+                     const shaders::ShaderSource &fragmentSource)
 {
     GLuint vertex = compile(name, GL_VERTEX_SHADER, vertexSource);
     GLuint fragment = 0;

@@ -1,6 +1,9 @@
 #pragma once
 // A linked GLSL program built from vertex + fragment source, with uniform lookup by name.
-// Compilation or link errors throw std::runtime_error carrying the driver's log.
+// Compilation or link errors throw std::runtime_error carrying the driver's log and, for
+// compilation, the files its source string numbers stand for.
+
+#include "splat_shaders.h"
 
 #include <GL/glew.h>
 
@@ -11,7 +14,7 @@ namespace splat {
 class GlProgram
 {
 public:
-    GlProgram(const std::string &name, const std::string &vertexSource, const std::string &fragmentSource);
+    GlProgram(const std::string &name, const shaders::ShaderSource &vertex, const shaders::ShaderSource &fragment);
     ~GlProgram();
     GlProgram(const GlProgram &) = delete;
     GlProgram &operator=(const GlProgram &) = delete;

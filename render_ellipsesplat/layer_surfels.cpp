@@ -73,7 +73,8 @@ bool layerHasNormals(const MeshModel &layer)
     return false;
 }
 
-SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options)
+SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options, std::size_t &skipped,
+                            const ProgressCallback &progress)
 {
     SurfelArrays surfels;
     const std::size_t count = std::size_t(layer.cm.vn);
@@ -109,16 +110,16 @@ SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &opt
         }
     }
     undoFitOffsets(surfels, fitOffsets);
-    if (hasEllipses)
-        return surfels;
-
-    if (std::find(radii.begin(), radii.end(), 0.0f) != radii.end()) {
-        const std::vector<float> spacing = nearestNeighbourRadii(surfels.positions, options.neighbours);
-        for (std::size_t i = 0; i < radii.size(); ++i)
-            if (radii[i] == 0.0f)
-                radii[i] = spacing[i];
+    if (!hasEllipses) {
+        if (std::find(radii.begin(), radii.end(), 0.0f) != radii.end()) {
+            const std::vector<float> spacing = nearestNeighbourRadii(surfels.positions, options.neighbours, progress);
+            for (std::size_t i = 0; i < radii.size(); ++i)
+                if (radii[i] == 0.0f)
+                    radii[i] = spacing[i];
+        }
+        assignCircularFrames(surfels, radii);
     }
-    assignCircularFrames(surfels, radii);
+    skipped = removeUnusableSurfels(surfels);
     return surfels;
 }
 

@@ -24,9 +24,13 @@ struct LayerSplatOptions
 
 // Surfels of every live vertex: ellipses from the EllipseMajorAxis/EllipseMinorAxis
 // attributes when the layer has both, otherwise circles whose radius is R() when the radius
-// component is enabled and positive, else the distance to the k-th nearest neighbour. With the
-// SurfelFitOffset attribute they stand at their unfitted positions unless options say otherwise.
-SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options);
+// component is enabled and positive, else the distance to the k-th nearest neighbour
+// (nearestNeighbourRadii, which reports its progress). With the SurfelFitOffset attribute they
+// stand at their unfitted positions unless options say otherwise. Vertices that cannot be drawn
+// (removeUnusableSurfels: non-finite or huge coordinates, zero normals) are left out and
+// counted in `skipped`.
+SurfelArrays surfelsOfLayer(const MeshModel &layer, const LayerSplatOptions &options, std::size_t &skipped,
+                            const ProgressCallback &progress = nullptr);
 
 // Changes whenever anything surfelsOfLayer reads changes (positions, normals, colours,
 // radii, ellipse attributes, fit offsets, which of them exist, and the options).

@@ -8,6 +8,11 @@
 
 #include <Eigen/Dense>
 
+#include <QElapsedTimer>
+#include <QMainWindow>
+#include <QProgressBar>
+#include <QStatusBar>
+
 namespace {
 
 // MeshLab's default colour for layers without per-vertex colour.
@@ -26,6 +31,35 @@ splat::Lighting lightingOfCurrentView()
     std::copy(ambient, ambient + 3, lighting.ambient);
     std::copy(diffuse, diffuse + 3, lighting.diffuse);
     return lighting;
+}
+
+// MeshLab 2020.09's render interface has no progress callback, and the splat sizes of a raw
+// cloud of millions of points take seconds: their progress goes to the main window's status
+// bar (message and MeshLab's progress bar), repainted at once rather than through the event
+// loop, which must not run inside a paint. Returns an empty callback outside a main window.
+splat::ProgressCallback statusBarProgress(GLArea *view, const QString &what)
+{
+    QMainWindow *window = qobject_cast<QMainWindow *>(view->window());
+    if (window == nullptr)
+        return nullptr;
+    QStatusBar *statusBar = window->statusBar();
+    QProgressBar *progressBar = statusBar->findChild<QProgressBar *>();
+    auto shown = std::make_shared<QElapsedTimer>();
+    return [statusBar, progressBar, what, shown](double fraction) {
+        if (shown->isValid() && shown->elapsed() < 100 && fraction < 1.0)
+            return; // a tenth of a second between repaints
+        shown->start();
+        const int percent = int(100 * fraction);
+        statusBar->showMessage(percent < 100 ? QString("%1: %2 %").arg(what).arg(percent) : what + ": done", 5000);
+        if (progressBar != nullptr) {
+            progressBar->show();
+            if (percent < 100)
+                progressBar->setValue(percent);
+            else
+                progressBar->reset();
+        }
+        statusBar->repaint();
+    };
 }
 
 } // namespace
@@ -109,7 +143,7 @@ void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
             logOnce(document, *layer,
                     "has no normals: drawn as usual (Filters > Normals > Compute normals for point sets)");
         else if (layer->cm.vn > 0)
-            cloud = cloudOf(resources, *layer);
+            cloud = cloudOf(resources, document, *layer, view);
         if (cloud == nullptr) {
             shared->setMeshTransformationMatrix(layer->id(), layer->cm.Tr);
             shared->draw(layer->id(), view->context());
@@ -149,15 +183,26 @@ void EllipseSplatRenderPlugin::Finalize(QAction *, MeshDocument *, GLArea *view)
     loggedMessages.clear();
 }
 
-const splat::SplatCloud *EllipseSplatRenderPlugin::cloudOf(ViewResources &view, const MeshModel &layer)
+const splat::SplatCloud *EllipseSplatRenderPlugin::cloudOf(ViewResources &resources, MeshDocument &document,
+                                                           const MeshModel &layer, GLArea *view)
 {
     splat::LayerSplatOptions options;
     options.neighbours = panel->neighbours();
     options.atFittedPositions = panel->atFittedPositions();
     const std::uint64_t fingerprint = splat::layerFingerprint(layer, options);
-    CachedCloud &cached = view.clouds[layer.id()];
+    CachedCloud &cached = resources.clouds[layer.id()];
     if (!cached.cloud || cached.fingerprint != fingerprint) {
-        cached.cloud.reset(new splat::SplatCloud(splat::surfelsOfLayer(layer, options), kDefaultSplatColor));
+        std::size_t skipped = 0;
+        const QString what = QString("Ellipse Splatting: splat sizes of layer '%1'").arg(layer.label());
+        const splat::SurfelArrays surfels = splat::surfelsOfLayer(layer, options, skipped, statusBarProgress(view, what));
+        view->makeCurrent(); // repainting the status bar may have made another GL context current
+        if (skipped > 0)
+            logOnce(document, layer,
+                    QString("has %1 points that cannot be drawn (non-finite or beyond %2 coordinates, or zero normals): "
+                            "skipped")
+                        .arg(skipped)
+                        .arg(double(splat::kMaxCoordinate)));
+        cached.cloud.reset(new splat::SplatCloud(surfels, kDefaultSplatColor));
         cached.fingerprint = fingerprint;
     }
     return cached.cloud.get();

@@ -44,7 +44,8 @@ private:
         std::map<int, CachedCloud> clouds; // by layer id
     };
 
-    const splat::SplatCloud *cloudOf(ViewResources &view, const MeshModel &layer);
+    const splat::SplatCloud *cloudOf(ViewResources &resources, MeshDocument &document, const MeshModel &layer,
+                                     GLArea *view);
     void logOnce(MeshDocument &document, const MeshModel &layer, const QString &message);
 
     QAction *action;

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace splat {
@@ -20,10 +21,24 @@ struct SurfelArrays
     bool hasColors() const { return colors.size() == 4 * size(); }
 };
 
+// Called now and then by long computations with the fraction done (0 to 1), from the thread
+// that called them.
+using ProgressCallback = std::function<void(double fraction)>;
+
+// The largest coordinate magnitude of a usable position, normal or ellipse axis: squared
+// distances and sums of such values stay finite in float (3e38 does not).
+constexpr float kMaxCoordinate = 1e18f;
+
+// True when the three coordinates at v are finite and within kMaxCoordinate.
+bool isUsableVector(const float *v);
+
 // Radius of each point's circular splat: the distance to its k-th nearest neighbour (itself
 // excluded), so neighbouring splats overlap on a uniformly sampled surface (for k = 8 the
-// radius is about 1.5 times the sample spacing). A lone point gets radius 0.
-std::vector<float> nearestNeighbourRadii(const std::vector<float> &positions, int k);
+// radius is about 1.5 times the sample spacing). The neighbours come from the grid search of
+// vcg_ext/gaussphere/point_grid.h, in parallel. Positions that are not usable
+// (isUsableVector) are left out of the search and get radius 0, as does a lone point.
+std::vector<float> nearestNeighbourRadii(const std::vector<float> &positions, int k,
+                                         const ProgressCallback &progress = nullptr);
 
 // The number of neighbours nearestNeighbourRadii uses when a caller has no better idea.
 constexpr int kDefaultSplatNeighbours = 8;
@@ -31,6 +46,11 @@ constexpr int kDefaultSplatNeighbours = 8;
 // Fills majorAxes/minorAxes with circles of the given radii in the plane orthogonal to each
 // normal (E × F points along the normal).
 void assignCircularFrames(SurfelArrays &surfels, const std::vector<float> &radii);
+
+// Removes the surfels that cannot be drawn: a position, normal or semi-axis that is not usable
+// (isUsableVector), or a zero normal. Returns how many it removed.
+// Expects a normal and both axes per surfel.
+std::size_t removeUnusableSurfels(SurfelArrays &surfels);
 
 // Moves each surfel back from where the resampler fitted it to its blended (MLS) surface onto
 // the sampled surface: position -= fitOffset · normal (the SurfelFitOffset attribute,

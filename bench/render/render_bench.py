@@ -35,9 +35,9 @@ GREY = 192  # tools/splat_render's default albedo, which the mesh (no colours) g
 # Surfel centres lie near cluster centroids, so their box is mostly slightly smaller than the
 # mesh's (and may reach slightly beyond it on convex parts): the two images would not share a
 # camera. We append, for every box face the surfels do
-# not reach, the mesh vertex that attains it, with a zero normal and zero axes: the splat modes
-# skip such records (no orientation, no area), so they only extend the box. Points mode draws
-# them as up to 6 points, each on a true surface vertex. Likewise the mesh gets, after its own
+# not reach, the mesh vertex that attains it, with a zero normal and zero axes: splat_render
+# frames every position, then skips such records in every mode but mesh, so they only extend
+# the box. Likewise the mesh gets, after its own
 # vertices, the surfel centres that reach beyond its box: no face uses them, so mesh mode does
 # not draw them. Colours are set to the mesh's grey so that the material is the same.
 def drawn_positions(vertices):

@@ -1,6 +1,8 @@
 // Rendering tests of the ellipse splat renderer on Mesa llvmpipe (run under Xvfb): analytic
-// spheres and single ellipses whose images are known, and each pass shown to matter.
+// spheres and single ellipses whose images are known, and each pass shown to matter; and the
+// file and line that GlProgram reports for a shader that does not compile.
 
+#include "gl_program.h"
 #include "render_test_support.h"
 
 #include <gtest/gtest.h>
@@ -256,6 +258,24 @@ INSTANTIATE_TEST_SUITE_P(Sizes, SingleEllipse,
                                            EllipseCase{"reaching_behind_the_eye", 1.0f, 2.5f, 4.0f,
                                                        Eigen::Vector3f(0.1f, 0.2f, 1.0f)}),
                          [](const ::testing::TestParamInfo<EllipseCase> &info) { return info.param.name; });
+
+// The driver reports compile errors in the source string numbers of the #line directives that
+// embed_shaders.cmake writes, and GlProgram says which file each number stands for.
+TEST(GlProgram, CompileErrorsNameTheFileAndLine)
+{
+    const shaders::ShaderSource vertex{"#version 330\nvoid main() { gl_Position = vec4(0.0); }\n", "0: v.vert.glsl"};
+    const shaders::ShaderSource fragment{"#version 330\n#line 1 1\nfloat one() { return 1.0; }\n#line 3 0\n"
+                                         "out vec4 color;\nvoid main() { color = vec4(undeclared); }\n",
+                                         "0: f.frag.glsl, 1: one.glsl"};
+    try {
+        GlProgram program("broken", vertex, fragment);
+        FAIL() << "an undeclared identifier compiled";
+    } catch (const std::runtime_error &error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("0: f.frag.glsl, 1: one.glsl"), std::string::npos) << message;
+        EXPECT_NE(message.find("0:4"), std::string::npos) << message;
+    }
+}
 
 int main(int argc, char **argv)
 {

@@ -142,10 +142,13 @@ std::vector<float> vertexNormalsOf(const splat::PointSetFile &mesh)
     return normals;
 }
 
+// Frames the usable positions (splat::isUsableVector): a NaN or 3e38 must not move the camera.
 void frameModel(const std::vector<float> &positions, splat::CameraSetup &camera)
 {
     Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e30f), hi = Eigen::Vector3f::Constant(-1e30f);
     for (std::size_t i = 0; i + 2 < positions.size(); i += 3) {
+        if (!splat::isUsableVector(&positions[i]))
+            continue;
         lo = lo.cwiseMin(Eigen::Vector3f(&positions[i]));
         hi = hi.cwiseMax(Eigen::Vector3f(&positions[i]));
     }
@@ -176,14 +179,50 @@ void writeMask(const QString &path, const splat::RenderTarget &target)
         throw std::runtime_error("cannot write " + path.toStdString());
 }
 
+// Gives the surfels of a point set circular frames when the file has no ellipses (radius from the
+// file when positive, else estimated from k neighbours), and drops the ones that cannot be drawn
+// (splat::removeUnusableSurfels), saying how many on stderr.
+void completeSplats(splat::PointSetFile &model, int neighbours, const std::string &name)
+{
+    if (!model.hasNormals)
+        throw std::runtime_error(name + " has no normals: splats need oriented points");
+    if (model.surfels.majorAxes.empty()) {
+        std::vector<float> radii = model.radii;
+        const bool allRadiiPositive =
+            !radii.empty() && std::all_of(radii.begin(), radii.end(), [](float r) { return r > 0; });
+        if (!allRadiiPositive) {
+            QElapsedTimer timer;
+            timer.start();
+            const std::vector<float> spacing = splat::nearestNeighbourRadii(model.surfels.positions, neighbours);
+            std::fprintf(stderr, "splat_render: splat sizes of %zu points from %d neighbours in %.2f s\n",
+                         model.surfels.size(), neighbours, double(timer.nsecsElapsed()) / 1e9);
+            radii.resize(spacing.size(), 0.0f);
+            for (std::size_t i = 0; i < radii.size(); ++i)
+                if (!(radii[i] > 0))
+                    radii[i] = spacing[i];
+        }
+        splat::assignCircularFrames(model.surfels, radii);
+    }
+    const std::size_t skipped = splat::removeUnusableSurfels(model.surfels);
+    if (skipped > 0)
+        std::fprintf(stderr, "splat_render: skipped %zu of %zu points (non-finite or beyond %g coordinates, or zero normals)\n",
+                     skipped, skipped + model.surfels.size(), double(splat::kMaxCoordinate));
+    if (model.surfels.size() == 0)
+        throw std::runtime_error(name + " holds no drawable points");
+}
+
 int run(const Options &o)
 {
     splat::PointSetFile model = splat::readPointSetFile(o.input.toStdString());
     if (model.surfels.size() == 0)
         throw std::runtime_error(o.input.toStdString() + " holds no vertices");
+    // The box of every usable position frames the model, also of the points no splat is drawn
+    // for (bench/render appends zero-normal records to set the box).
     splat::CameraSetup cameraSetup = o.camera;
     frameModel(model.surfels.positions, cameraSetup);
     const splat::Camera camera = splat::frameBoundingSphere(cameraSetup);
+    if (o.mode != Mode::Mesh)
+        completeSplats(model, o.neighbours, o.input.toStdString());
 
     splat::OffscreenGl gl;
     splat::RenderTarget target(o.width, o.height);
@@ -200,21 +239,6 @@ int run(const Options &o)
                                                          model.triangles, kDefaultColor));
         drawFrame = [&] { meshRenderer->render(camera.modelView, camera.projection, lighting, o.flatMesh); };
     } else {
-        if (!model.hasNormals)
-            throw std::runtime_error(o.input.toStdString() + " has no normals: splats need oriented points");
-        if (model.surfels.majorAxes.empty()) {
-            std::vector<float> radii = model.radii;
-            const bool allRadiiPositive =
-                !radii.empty() && std::all_of(radii.begin(), radii.end(), [](float r) { return r > 0; });
-            if (!allRadiiPositive) {
-                const std::vector<float> spacing = splat::nearestNeighbourRadii(model.surfels.positions, o.neighbours);
-                radii.resize(spacing.size(), 0.0f);
-                for (std::size_t i = 0; i < radii.size(); ++i)
-                    if (!(radii[i] > 0))
-                        radii[i] = spacing[i];
-            }
-            splat::assignCircularFrames(model.surfels, radii);
-        }
         splatRenderer.reset(new splat::EllipseSplatRenderer);
         cloud.reset(new splat::SplatCloud(model.surfels, kDefaultColor));
         splat::SplatDrawItem item{cloud.get(), {}};
