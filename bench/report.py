@@ -20,6 +20,8 @@ Writes into DIR:
   control_error_bound.csv, control_error_bound.md
                  beyond the paper: ours under an error bound (fraction of the diagonal), whether
                  the metric's D* stays under it, peers at the same count
+When DIR is bench/results/ (a full run), it then writes docs/results.md and prints README.md's
+results table (bench/results_doc.py, which reads every committed result file).
 """
 import argparse
 import csv
@@ -796,6 +798,12 @@ def main():
             if not rows:
                 sys.exit(f"report.py: {path} has no rows")
             write(rows, args.out, header)
+    # A full run writes into bench/results/: the results page and README's table follow it.
+    import results_doc
+    if os.path.realpath(args.out) == os.path.realpath(results_doc.RESULTS_DIR):
+        print(results_doc.write_doc())
+        print(f"report.py: wrote {results_doc.DOC}; the table above goes between README.md's "
+              f"{results_doc.BEGIN} and {results_doc.END}", file=sys.stderr)
 
 
 if __name__ == "__main__":
