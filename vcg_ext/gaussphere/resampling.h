@@ -294,7 +294,6 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 {
     const std::string invalid = param.Validate();
     if (!invalid.empty()) throw std::invalid_argument(invalid);
-    const ReuseLargeBuffers reuse; // first: it outlives every buffer of the run
     ResamplingResult result;
     ResamplingStats &stats = result.stats;
     RunThreads threads(param.adaptThreads);
