@@ -190,12 +190,12 @@ TEST(AdaptiveNeighbors, IndependentOfThreadCount)
     EXPECT_EQ(one.spacing, two.spacing);
 }
 
-// KeepFirstSlots moves the rows within the buffer in batches; the result is the first slots of
-// every row, as a plain copy gives them, for strides cut by a factor 16, 2 and 9/8 (many small
-// batches), on 1 and 3 threads.
+// KeepFirstSlots leaves the first slots of every row, and found and count capped to them, in a
+// buffer of exactly that size (the full one is freed), for strides cut by a factor 16, 2, 9/8
+// and 3/2, on 1 and 3 threads.
 TEST(AdaptiveNeighbors, KeepFirstSlotsKeepsEachRowsFirstSlots)
 {
-    const gstest::PointSet s = RandomOrientedPoints(70000, 5); // adjacency 4.5 MB: a mapped buffer
+    const gstest::PointSet s = RandomOrientedPoints(70000, 5);
     for (int threads : {1, 3})
         for (const auto &cut : {std::make_pair(16, 1), std::make_pair(16, 8), std::make_pair(9, 8), std::make_pair(3, 2)}) {
             vcg::gaussphere::ScopedThreadCount t(threads);
@@ -210,6 +210,7 @@ TEST(AdaptiveNeighbors, KeepFirstSlotsKeepsEachRowsFirstSlots)
             }
             KeepFirstSlots(g, cut.second);
             EXPECT_EQ(g.stride, cut.second);
+            EXPECT_EQ(g.adjacency.capacity(), expected.size());
             EXPECT_TRUE(std::equal(expected.begin(), expected.end(), g.adjacency.begin(), g.adjacency.end()))
                 << cut.first << " -> " << cut.second << " slots, " << threads << " threads";
             EXPECT_TRUE(std::equal(found.begin(), found.end(), g.found.begin(), g.found.end()));
