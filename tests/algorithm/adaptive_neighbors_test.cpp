@@ -9,7 +9,6 @@
 #include <vector>
 
 #include <vcg_ext/gaussphere/adaptive_neighbors.h>
-#include <vcg_ext/gaussphere/point_kdtree.h>
 #include <vcg_ext/gaussphere/gaussian_sphere.h>
 
 #include "test_support.h"
@@ -94,17 +93,17 @@ TEST(AdaptiveNeighbors, SharpEdgeSeparatesTheTwoSides)
             s.Add(P3(0, y * h, t * h), P3(-1, 0, 0), 1);  // wall
         }
     const NeighborGraph g = Build(s, 16, GaussianSphere::PaperMaxEdgeLength(8));
-    const PointKdTree tree(s.points);
     int crossingInKnn = 0;
     for (int i = 0; i < s.Size(); ++i) {
         for (const int *q = g.begin(i); q != g.end(i); ++q) EXPECT_EQ(s.tag[*q], s.tag[i]) << i << " -> " << *q;
-        int idx[16];
-        float d2[16];
-        const int found = tree.KNearest(s.points[i], 16, i, idx, d2);
+        std::vector<std::pair<float, int>> nearest; // the 16 nearest by (distance, index)
+        for (int j = 0; j < s.Size(); ++j)
+            if (j != i) nearest.push_back({(s.points[j] - s.points[i]).SquaredNorm(), j});
+        std::partial_sort(nearest.begin(), nearest.begin() + 16, nearest.end());
         int sameSide = 0;
-        for (int t = 0; t < found; ++t) {
-            crossingInKnn += s.tag[idx[t]] != s.tag[i];
-            sameSide += s.tag[idx[t]] == s.tag[i];
+        for (int t = 0; t < 16; ++t) {
+            crossingInKnn += s.tag[nearest[t].second] != s.tag[i];
+            sameSide += s.tag[nearest[t].second] == s.tag[i];
         }
         EXPECT_EQ(int(g.count[i]), sameSide) << "every same-side k-NN neighbour is kept";
     }
