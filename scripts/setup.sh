@@ -13,11 +13,11 @@ packages=(
   # build
   build-essential cmake pkg-config dpkg-dev
   qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libglew-dev libeigen3-dev
-  libgtest-dev glslang-tools
+  libgtest-dev libnanoflann-dev glslang-tools
   # host application and headless runs
   meshlab xvfb xauth libgl1-mesa-dri mesa-utils imagemagick xdotool
   # benchmark peers and plots
-  libcgal-dev python3 python3-matplotlib python3-numpy time
+  libcgal-dev python3 python3-matplotlib python3-numpy time hyperfine
 )
 
 missing=()

@@ -1,5 +1,5 @@
 // PointGrid::ForAllKNearest against brute force: the grid blocks, their growth to larger
-// rings, and the kd-tree fallback for isolated points must all give the exact k nearest.
+// rings, and the kd-tree fallback (nanoflann) for isolated points must all give the exact k nearest.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -127,6 +127,22 @@ TEST(PointGrid, DenseClumpMatchesBruteForce)
     std::uniform_real_distribution<float> jitter(-1e-4f, 1e-4f);
     for (int c = 0; c < 700; ++c) pts.push_back(pts[0] + P3(jitter(rng), jitter(rng), jitter(rng)));
     ExpectExactAllKNearest(pts, 16);
+}
+
+// The kd-tree orders equal distances by index too: a clump that is a lattice of 11^3 points at
+// a power-of-two step (exact distances: ties at every rank, and across the k-th at k = 16, where
+// the 12 neighbours at sqrt 2 follow the 6 at 1) is answered by it, exactly.
+TEST(PointGrid, DenseLatticeTiesMatchBruteForce)
+{
+    PointArray pts = SpherePoints(2000, 12);
+    const float step = 1.f / (1 << 20);
+    for (int x = -5; x <= 5; ++x)
+        for (int y = -5; y <= 5; ++y)
+            for (int z = -5; z <= 5; ++z) pts.push_back(P3(x * step, y * step, z * step));
+    for (int k : {6, 16, 26}) {
+        SCOPED_TRACE(k);
+        ExpectExactAllKNearest(pts, k);
+    }
 }
 
 TEST(PointGrid, PlanarGridMatchesBruteForce)

@@ -126,31 +126,23 @@ inline void RestrictToCone(const PointArray &points, const PointArray &normals,
 
 /// Keeps the first `slotCount` slots of every point (the nearest kept by the cone, then the nearest
 /// rejected), at that stride: for stages that read no further, at a fraction of the memory. The
-/// slots move within the buffer, whose pages past the kept ones go back to the system: a second
-/// buffer would add its size to the peak this lowers. The graph can no longer be restricted to
-/// another cone.
+/// kept slots are copied into a buffer of their own and the full one is freed: both exist during
+/// the copy (std::allocator cannot give back a buffer's tail). The graph can no longer be
+/// restricted to another cone.
 // (Not "slots": Qt defines it as a macro, and MeshLab plugins include these headers.)
 inline void KeepFirstSlots(NeighborGraph &g, int slotCount)
 {
     if (slotCount >= g.stride) return;
     const long long n = g.Size(), from = g.stride, to = std::max(0, slotCount);
-    int *data = g.adjacency.data();
-    // Row i moves down from i*from to i*to. Rows [a, b) move at once, in parallel, when none of
-    // their targets reaches a source among them, b*to <= a*from (the rows before moved already):
-    // batches grow by from/to. Row 0 stays.
-    for (long long a = 1; a < n;) {
-        const long long b = std::min(n, std::max(a + 1, to > 0 ? a * from / to : n));
-#pragma omp parallel for schedule(static)
-        for (long long i = a; i < b; ++i) std::copy(data + i * from, data + i * from + to, data + i * to);
-        a = b;
-    }
+    FlatVector<int> kept(size_t(n * to));
+    const int *data = g.adjacency.data();
 #pragma omp parallel for schedule(static)
     for (long long i = 0; i < n; ++i) {
+        std::copy(data + i * from, data + i * from + to, kept.data() + i * to);
         g.found[size_t(i)] = std::uint8_t(std::min<long long>(g.found[size_t(i)], to));
         g.count[size_t(i)] = std::uint8_t(std::min<long long>(g.count[size_t(i)], to));
     }
-    g.adjacency.resize(size_t(n * to));
-    ReleaseUnusedCapacity(g.adjacency);
+    g.adjacency.swap(kept);
     g.stride = int(to);
     g.chord = -2; // no chord's partition: RestrictToCone would need the slots cut off
 }

@@ -45,7 +45,8 @@
 #include "counting_sort.h"
 #include "cpu_dispatch.h"
 #include "flat_vector.h"
-#include "point_kdtree.h"
+
+#include <nanoflann.hpp>
 
 namespace vcg {
 namespace gaussphere {
@@ -168,7 +169,7 @@ public:
 
     /// Calls sink(i, index, squaredDistance, found) for every point i with its
     /// found = min(k, N-1) nearest other points by increasing (distance, index): ties are
-    /// resolved by index, as in PointKdTree, so the result is unique. Runs in parallel; sink
+    /// resolved by index, so the result is unique. Runs in parallel; sink
     /// must be safe to call concurrently for different i.
     /// `progress(fraction)` is called from the calling thread now and then; when it returns
     /// false the search stops early and ForAllKNearest returns false (some points unvisited).
@@ -281,7 +282,7 @@ public:
         // A few dozen isolated points are cheaper to answer by a scan of every point than
         // by building a tree over all of them (see kMaxScannedQueries).
         const bool scanAll = unresolved.size() <= kMaxScannedQueries;
-        std::unique_ptr<PointKdTree> tree(scanAll ? nullptr : new PointKdTree(points_));
+        std::unique_ptr<FallbackTree> tree(scanAll ? nullptr : new FallbackTree(points_));
 #pragma omp parallel
         {
             std::vector<int> idx(k);
@@ -292,12 +293,12 @@ public:
                 const int i = unresolved[u];
                 int found = 0;
                 if (tree) {
-                    found = tree->KNearest(points_[i], k, i, idx.data(), d2.data());
+                    found = tree->KNearest(i, k, nearest.data());
                 } else {
                     for (int j = 0; j < n; ++j)
                         if (j != i) InsertNearest(DistanceIndexKey((points_[j] - points_[i]).SquaredNorm(), j), k, nearest.data(), found);
-                    UnpackKeys(nearest.data(), found, idx.data(), d2.data());
                 }
+                UnpackKeys(nearest.data(), found, idx.data(), d2.data());
                 sink(i, idx.data(), d2.data(), found);
             }
         }
@@ -306,6 +307,77 @@ public:
 
 private:
     struct Cell { std::int64_t x, y, z; };
+
+    /// nanoflann's kd-tree over all the points, for the points the grid leaves unresolved: the
+    /// same (distance, index) order as the grid's, so the same unique result. Its distances are
+    /// the grid's float squared norms (equal distances compare equal). A subtree's bound sums,
+    /// in double, per-axis float squares that are each at most a point's own, but the point's
+    /// float sum may round below that by up to 2^-23 of it: subtrees are pruned only beyond
+    /// the k-th distance times 1 + 2^-20, so a point that ties it is still offered. nanoflann
+    /// builds and searches recursively; each level halves a side of its node's box or splits
+    /// off the points at one end of it, so the depth is bounded by float precision, not by N.
+    class FallbackTree
+    {
+    public:
+        explicit FallbackTree(const PointArray &points)
+            : source_{points}, tree_(3, source_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+
+        /// The found = min(k, N-1) nearest points other than i, as sorted keys in nearest[0, found).
+        int KNearest(int i, int k, std::uint64_t *nearest) const
+        {
+            if (k <= 0) return 0;
+            NearestKeys result{i, k, nearest};
+            tree_.findNeighbors(result, &source_.points[i][0], nanoflann::SearchParams());
+            return result.found;
+        }
+
+    private:
+        struct Source
+        {
+            const PointArray &points;
+            size_t kdtree_get_point_count() const { return points.size(); }
+            float kdtree_get_pt(std::uint32_t id, size_t axis) const { return points[id][axis]; }
+            template <class Box> bool kdtree_get_bbox(Box &) const { return false; }
+        };
+        struct Metric
+        {
+            typedef float ElementType;
+            typedef double DistanceType;
+            const Source &source;
+            explicit Metric(const Source &s) : source(s) {}
+            double evalMetric(const float *q, std::uint32_t id, size_t) const
+            {
+                return (source.points[id] - Point3(q[0], q[1], q[2])).SquaredNorm();
+            }
+            template <class U, class V> double accum_dist(U a, V b, size_t) const
+            {
+                const float d = float(a) - float(b);
+                return d * d;
+            }
+        };
+        /// nanoflann's result set: offers the points closer than worstDist() and visits the
+        /// subtrees whose bound is at most that.
+        struct NearestKeys
+        {
+            int self, k;
+            std::uint64_t *nearest;
+            int found = 0;
+            double bound = std::numeric_limits<double>::max();
+
+            bool full() const { return found == k; }
+            double worstDist() const { return bound; }
+            bool addPoint(double d2, std::uint32_t id)
+            {
+                if (int(id) == self) return true;
+                InsertNearest(DistanceIndexKey(float(d2), int(id)), k, nearest, found);
+                if (found == k) bound = std::nextafter(double(DistanceOfKey(nearest[k - 1])) * (1 + 1.0 / (1 << 20)), HUGE_VAL);
+                return true;
+            }
+        };
+
+        Source source_;
+        nanoflann::KDTreeSingleIndexAdaptor<Metric, Source, 3, std::uint32_t> tree_;
+    };
 
     /// Sorts (key, index) pairs by key, keeping the given order among equal keys: an LSD radix
     /// sort over the keys' significant bits (cells per axis rarely need more than 10 bits, so
