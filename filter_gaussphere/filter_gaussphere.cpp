@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include <vcg_ext/gaussphere/resampling.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include "resampling_log.h"
 

@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include <vcg_ext/gaussphere/adaptive_neighbors.h>
-#include <vcg_ext/gaussphere/point_kdtree.h>
-#include <vcg_ext/gaussphere/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/neighbors/point_kdtree.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 
 #include "test_support.h"
 

@@ -8,7 +8,7 @@
 #include <sys/mman.h>
 #endif
 
-#include <vcg_ext/gaussphere/flat_vector.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 using vcg::gaussphere::FlatVector;
 

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-#include <vcg_ext/gaussphere/point_kdtree.h>
+#include <vcg_ext/gaussphere/neighbors/point_kdtree.h>
 
 #include "test_support.h"
 

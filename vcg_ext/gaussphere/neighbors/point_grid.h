@@ -42,10 +42,10 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
-#include "counting_sort.h"
-#include "cpu_dispatch.h"
-#include "flat_vector.h"
-#include "point_kdtree.h"
+#include <vcg_ext/gaussphere/support/counting_sort.h>
+#include <vcg_ext/gaussphere/support/cpu_dispatch.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
+#include <vcg_ext/gaussphere/neighbors/point_kdtree.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -16,7 +16,7 @@
 
 #include <vcg/space/point3.h>
 
-#include "flat_vector.h"
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 namespace vcg {
 namespace gaussphere {
