@@ -1,7 +1,7 @@
 #include "layer_surfels.h"
 
 #include <common/meshmodel.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include <algorithm>
 #include <cstring>

@@ -1,6 +1,6 @@
 #include "surfel_arrays.h"
 
-#include <vcg_ext/gaussphere/point_grid.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
 
 #include <algorithm>
 #include <cassert>

@@ -35,7 +35,7 @@ bool isUsableVector(const float *v);
 // Radius of each point's circular splat: the distance to its k-th nearest neighbour (itself
 // excluded), so neighbouring splats overlap on a uniformly sampled surface (for k = 8 the
 // radius is about 1.5 times the sample spacing). The neighbours come from the grid search of
-// vcg_ext/gaussphere/point_grid.h, in parallel. Positions that are not usable
+// vcg_ext/gaussphere/neighbors/point_grid.h, in parallel. Positions that are not usable
 // (isUsableVector) are left out of the search and get radius 0, as does a lone point.
 std::vector<float> nearestNeighbourRadii(const std::vector<float> &positions, int k,
                                          const ProgressCallback &progress = nullptr);

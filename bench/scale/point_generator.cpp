@@ -1,6 +1,6 @@
 #include "point_generator.h"
 
-#include <vcg_ext/gaussphere/point_grid.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
 
 #include <algorithm>
 #include <cmath>

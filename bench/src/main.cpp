@@ -62,7 +62,7 @@
 #include <sys/stat.h>
 
 #include <vcg_ext/gaussphere/resampling.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include "child_process.h"
 #include "peers.h"

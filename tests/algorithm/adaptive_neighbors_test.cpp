@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include <vcg_ext/gaussphere/adaptive_neighbors.h>
-#include <vcg_ext/gaussphere/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 
 #include "test_support.h"
 

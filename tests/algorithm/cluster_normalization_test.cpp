@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include <vcg_ext/gaussphere/cluster_normalization.h>
+#include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
 
 #include "test_support.h"
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <set>
 
-#include <vcg_ext/gaussphere/cluster_refinement.h>
+#include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
 
 #include "test_support.h"
 

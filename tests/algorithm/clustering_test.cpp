@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include <vcg_ext/gaussphere/clustering.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
 
 #include "test_support.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include <vcg_ext/gaussphere/crease_blend.h>
+#include <vcg_ext/gaussphere/surfels/crease_blend.h>
 
 #include "pipeline_support.h"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include <vcg_ext/gaussphere/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 
 #include "test_support.h"
 

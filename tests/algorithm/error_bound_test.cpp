@@ -9,7 +9,7 @@
 #include <cstring>
 #include <random>
 
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 #include <vcg_ext/surfel_error/surfel_error.h>
 
 #include "pipeline_support.h"

@@ -10,7 +10,7 @@
 #include <unistd.h>
 #endif
 
-#include <vcg_ext/gaussphere/flat_vector.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 using vcg::gaussphere::FlatVector;
 

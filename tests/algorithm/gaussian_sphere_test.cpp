@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include <vcg_ext/gaussphere/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 
 #include "test_support.h"
 

@@ -9,9 +9,9 @@
 
 #include <omp.h>
 
-#include <vcg_ext/gaussphere/adaptive_neighbors.h>
-#include <vcg_ext/gaussphere/gaussian_sphere.h>
-#include <vcg_ext/gaussphere/index_propagation.h>
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/clustering/index_propagation.h>
 
 #include "test_support.h"
 

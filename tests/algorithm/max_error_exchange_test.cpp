@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include <vcg_ext/gaussphere/max_error_exchange.h>
+#include <vcg_ext/gaussphere/size_control/max_error_exchange.h>
 
 #include "pipeline_support.h"
 

@@ -7,9 +7,9 @@
 
 #include <limits>
 
-#include <vcg_ext/gaussphere/principal_axes.h>
+#include <vcg_ext/gaussphere/clustering/principal_axes.h>
 #include <vcg_ext/gaussphere/resampling.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 #include <vcg_ext/surfel_error/surfel_error.h>
 
 #include "test_support.h"

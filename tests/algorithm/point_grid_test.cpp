@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include <vcg_ext/gaussphere/point_grid.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
 
 #include "test_support.h"
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <random>
 
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include "pipeline_support.h"
 

@@ -6,9 +6,9 @@
 #include <numeric>
 #include <random>
 
-#include <vcg_ext/gaussphere/gaussian_sphere.h>
-#include <vcg_ext/gaussphere/index_propagation.h>
-#include <vcg_ext/gaussphere/singleton_rejoining.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/clustering/index_propagation.h>
+#include <vcg_ext/gaussphere/clustering/singleton_rejoining.h>
 
 #include "test_support.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include <vcg_ext/gaussphere/surfel_generation.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
 
 #include "test_support.h"
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include <vcg_ext/gaussphere/point_grid.h>
-#include <vcg_ext/gaussphere/surfel_offset.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
+#include <vcg_ext/gaussphere/surfels/surfel_offset.h>
 #include <vcg_ext/surfel_error/surfel_error.h>
 
 #include "pipeline_support.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <random>
 
-#include <vcg_ext/gaussphere/surfel_recipe.h>
+#include <vcg_ext/gaussphere/surfels/surfel_recipe.h>
 
 #include "pipeline_support.h"
 

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include <vcg_ext/gaussphere/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <omp.h>
 

@@ -16,7 +16,7 @@
 
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <vcg_ext/gaussphere/resampling.h>
-#include <vcg_ext/gaussphere/surfel_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 #include <io_surfel/surfel_records_mesh.h>
 
 #include <wrap/io_trimesh/export_ply.h>

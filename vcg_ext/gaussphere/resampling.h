@@ -3,19 +3,21 @@
 // the paper's sections to the headers and gives the reason for each choice where it is silent.
 //
 //   input: the usable points at a unit scale                       usable_points.h
-//   1. adaptive neighbours (k nearest inside the cone of normals)  point_grid.h, adaptive_neighbors.h
-//   2. naive sampling by index propagation                         index_propagation.h
-//      and singleton rejoining                                      singleton_rejoining.h
+//   1. adaptive neighbours (k nearest inside the cone of normals)  neighbors/
+//   2. naive sampling by index propagation                         clustering/index_propagation.h
+//      and singleton rejoining                                      clustering/singleton_rejoining.h
 //   3. cluster normalization + singleton rejoining, iterated until
-//      the cluster count changes by less than a fraction of N      cluster_normalization.h
-//   4. one elliptical surfel per cluster                            surfel_generation.h, surfel_recipe.h
-//   size control beyond the paper, one mode a run (SizeControl):
+//      the cluster count changes by less than a fraction of N      clustering/cluster_normalization.h
+//   4. one elliptical surfel per cluster                            surfels/surfel_generation.h
+//   size control beyond the paper, one mode a run (SizeControl):    size_control/
 //      Level: the clustering of step 3 as it is
-//      TargetCount: level search, splits or merges                  cluster_refinement.h
-//                   and exchanges for the largest error             max_error_exchange.h
-//      ErrorBound: splits until every point is within the bound    surface_error_bound.h
-//   surfels fitted to the blended surface                           surfel_offset.h
-//   with narrower blends around creases                             crease_blend.h
+//      TargetCount: level search, splits or merges                  size_control/cluster_refinement.h
+//                   and exchanges for the largest error             size_control/max_error_exchange.h
+//      ErrorBound: splits until every point is within the bound    size_control/surface_error_bound.h
+//   surfels fitted to the blended surface                           surfels/surfel_offset.h
+//   with narrower blends around creases                             surfels/crease_blend.h
+//   the blended surface itself                                      vcg_ext/surfel/blended_surface.h
+//   buffers, sorting and CPU dispatch                               support/
 //
 // Usage:
 //   vcg::gaussphere::ResamplingParams param;          // the paper's defaults (resampling_params.h)
@@ -39,23 +41,23 @@
 
 #include <vcg/complex/complex.h>
 
-#include "adaptive_neighbors.h"
-#include "cluster_normalization.h"
-#include "cluster_refinement.h"
-#include "clustering.h"
-#include "crease_blend.h"
-#include "flat_vector.h"
-#include "gaussian_sphere.h"
-#include "index_propagation.h"
-#include "max_error_exchange.h"
-#include "point_grid.h"
-#include "resampling_params.h"
-#include "singleton_rejoining.h"
-#include "surface_error_bound.h"
-#include "surfel_generation.h"
-#include "surfel_offset.h"
-#include "surfel_recipe.h"
-#include "usable_points.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
+#include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/surfels/crease_blend.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
+#include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
+#include <vcg_ext/gaussphere/clustering/index_propagation.h>
+#include <vcg_ext/gaussphere/size_control/max_error_exchange.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
+#include <vcg_ext/gaussphere/resampling_params.h>
+#include <vcg_ext/gaussphere/clustering/singleton_rejoining.h>
+#include <vcg_ext/gaussphere/size_control/surface_error_bound.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
+#include <vcg_ext/gaussphere/surfels/surfel_offset.h>
+#include <vcg_ext/gaussphere/surfels/surfel_recipe.h>
+#include <vcg_ext/gaussphere/usable_points.h>
 
 namespace vcg {
 namespace gaussphere {

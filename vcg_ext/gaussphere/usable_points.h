@@ -19,7 +19,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
-#include "clustering.h"
+#include <vcg_ext/gaussphere/clustering/clustering.h>
 
 namespace vcg {
 namespace gaussphere {

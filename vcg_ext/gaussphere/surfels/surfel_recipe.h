@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "adaptive_neighbors.h"
-#include "clustering.h"
-#include "crease_blend.h"
-#include "surfel_generation.h"
-#include "surfel_offset.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/surfels/crease_blend.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
+#include <vcg_ext/gaussphere/surfels/surfel_offset.h>
 
 namespace vcg {
 namespace gaussphere {

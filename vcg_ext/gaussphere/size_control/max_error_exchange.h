@@ -53,12 +53,12 @@
 #include <vcg_ext/surfel/blended_surface.h>
 #include <vcg_ext/surfel/percentile.h>
 
-#include "adaptive_neighbors.h"
-#include "cluster_refinement.h"
-#include "clustering.h"
-#include "surface_error_bound.h"
-#include "surfel_generation.h"
-#include "surfel_recipe.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/size_control/surface_error_bound.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
+#include <vcg_ext/gaussphere/surfels/surfel_recipe.h>
 
 namespace vcg {
 namespace gaussphere {

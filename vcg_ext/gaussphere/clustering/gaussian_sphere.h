@@ -28,7 +28,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "cpu_dispatch.h"
+#include <vcg_ext/gaussphere/support/cpu_dispatch.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -39,9 +39,9 @@
 
 #include <vcg/space/point3.h>
 
-#include "adaptive_neighbors.h"
-#include "clustering.h"
-#include "surfel_generation.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -30,9 +30,9 @@
 
 #include <vcg_ext/surfel/blended_surface.h>
 
-#include "cluster_refinement.h"
-#include "clustering.h"
-#include "surfel_generation.h"
+#include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
 
 namespace vcg {
 namespace gaussphere {

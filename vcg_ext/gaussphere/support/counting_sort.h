@@ -11,7 +11,7 @@
 
 #include <omp.h>
 
-#include "flat_vector.h"
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -36,9 +36,9 @@
 #include <vcg/space/point3.h>
 #include <vcg_ext/surfel/blended_surface.h>
 
-#include "adaptive_neighbors.h"
-#include "clustering.h"
-#include "surfel_generation.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/surfels/surfel_generation.h>
 
 namespace vcg {
 namespace gaussphere {

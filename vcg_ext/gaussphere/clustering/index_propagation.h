@@ -27,8 +27,8 @@
 
 #include <vcg/space/point3.h>
 
-#include "adaptive_neighbors.h"
-#include "clustering.h"
+#include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/clustering/clustering.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -34,9 +34,9 @@
 
 #include <vcg_ext/surfel/surfel.h>
 
-#include "clustering.h"
-#include "flat_vector.h"
-#include "principal_axes.h"
+#include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
+#include <vcg_ext/gaussphere/clustering/principal_axes.h>
 
 namespace vcg {
 namespace gaussphere {

@@ -42,9 +42,9 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
-#include "counting_sort.h"
-#include "cpu_dispatch.h"
-#include "flat_vector.h"
+#include <vcg_ext/gaussphere/support/counting_sort.h>
+#include <vcg_ext/gaussphere/support/cpu_dispatch.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 #include <nanoflann.hpp>
 

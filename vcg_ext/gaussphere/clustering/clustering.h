@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "counting_sort.h"
-#include "flat_vector.h"
+#include <vcg_ext/gaussphere/support/counting_sort.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
 
 namespace vcg {
 namespace gaussphere {

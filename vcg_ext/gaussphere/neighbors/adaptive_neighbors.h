@@ -18,9 +18,9 @@
 
 #include <vcg/space/point3.h>
 
-#include "crease_points.h"
-#include "flat_vector.h"
-#include "point_grid.h"
+#include <vcg_ext/gaussphere/neighbors/crease_points.h>
+#include <vcg_ext/gaussphere/support/flat_vector.h>
+#include <vcg_ext/gaussphere/neighbors/point_grid.h>
 
 namespace vcg {
 namespace gaussphere {
