@@ -11,6 +11,8 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(realpath "${1:-$here/build}")"
 rounds="${2:-5}"
+# Huge pages for both processes' heaps (README: Install): the same host setting for each.
+export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
 data="${SHARED_DATA_DIR:-$here/../shared/data}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

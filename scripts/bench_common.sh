@@ -2,6 +2,10 @@
 # build, inputs, header. Sourced,
 # with `root`, `build` and `jobs` set by the caller.
 
+# Every measured process, ours and the peers, runs with transparent huge pages for its heap
+# (README: Install): the setting is the host's, and the same for each.
+export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
+
 # bench_parse_args SCRIPT_NAME HELP_LINES ARGS...: sets `quick` (0/1) and `models` (names).
 bench_parse_args() {
   local name=$1 help_lines=$2

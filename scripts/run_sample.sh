@@ -15,6 +15,8 @@ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)" --target stage splat_render
 mkdir -p "$out"
 name="$(basename "$input" .ply)"
+# Transparent huge pages for the resampler's buffers (README: Install).
+export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
 server=(xvfb-run -a -s "-screen 0 1280x1024x24" "$build/stage/bin/meshlabserver")
 # .surfel keeps the ellipse axes; the PLY copy (normals, radii) opens in any viewer.
 "${server[@]}" -i "$input" -s "$script" -o "$out/${name}_resampled.surfel" > "$out/${name}_resampled.log" 2>&1 ||
