@@ -12,6 +12,7 @@
 #   .deps/meshlab-2025.07/src/                     the unpacked tarball (src/, resources/, ...)
 #   .deps/meshlab-2025.07/build/src/distrib/       meshlab, libmeshlab-common.so, plugins/, shaders/
 #   .deps/meshlab-2025.07/.hosts-build-complete    the marker; .hosts-build-seconds the build time
+#                                                  (summed over interrupted attempts)
 # In a MINI build add_meshlab_plugin() (src/cmake/meshlab_tools.cmake) marks every plugin
 # EXCLUDE_FROM_ALL, so plugins are built by naming their targets; MESHLAB_PLUGINS limits the
 # configured ones (src/CMakeLists.txt). JOBS sets the parallel jobs (default 2).
@@ -48,11 +49,16 @@ if [ ! -f "$dir/src/CMakeLists.txt" ] || [ "$(cat "$dir/.hosts-tarball" 2>/dev/n
 fi
 
 export HOSTS_BINDS="$dir:$inside"
+# An interrupted build resumes where it stopped; the time of every attempt is summed in
+# .hosts-build-seconds-spent until one completes.
+spent="$dir/.hosts-build-seconds-spent"
 started=$SECONDS
+trap 'echo $(( $(cat "$spent" 2>/dev/null || echo 0) + SECONDS - started )) > "$spent.new" && mv "$spent.new" "$spent"' EXIT
 hosts_in_root nice -n 15 cmake -S "$inside/src" -B "$inside/build" "${options[@]}"
 hosts_in_root nice -n 15 cmake --build "$inside/build" -j "$jobs"
 hosts_in_root nice -n 15 cmake --build "$inside/build" -j "$jobs" --target "${plugins[@]}"
-seconds=$((SECONDS - started))
+trap - EXIT
+seconds=$(( $(cat "$spent" 2>/dev/null || echo 0) + SECONDS - started ))
 
 for f in meshlab libmeshlab-common.so; do
   [ -e "$dir/build/src/distrib/$f" ] || { echo "[meshlab2025] missing build/src/distrib/$f" >&2; exit 1; }
@@ -62,5 +68,6 @@ for p in "${plugins[@]}"; do
 done
 
 echo "$seconds" > "$dir/.hosts-build-seconds"
+rm -f "$spent"
 echo "$stamp" > "$marker"
 echo "[meshlab2025] built in $seconds s: $dir/build/src/distrib"
