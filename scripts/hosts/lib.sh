@@ -8,7 +8,8 @@
 #                             bound in a private mount namespace and unmounted on exit (trap);
 #                             HOSTS_BINDS="HOSTDIR:ROOTDIR ..." binds more folders;
 #                             the environment is reset (PATH HOME LANG, DISPLAY when set)
-#   hosts_xvfb_start          starts Xvfb (the root's) on a free display, exports DISPLAY
+#   hosts_xvfb_start          starts Xvfb (the root's) on a free display, exports DISPLAY;
+#                             it runs as a background job of the caller, so stop it before a bare `wait`
 #   hosts_xvfb_stop           stops it
 #   hosts_screenshot FILE     `import -window root` of DISPLAY, written to FILE on the host
 
