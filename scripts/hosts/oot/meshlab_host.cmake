@@ -14,6 +14,7 @@
 set(MESHLAB_SOURCE_DIR "" CACHE PATH "MeshLab source tree of the host (ML_VERSION, src/common, src/vcglib)")
 set(MESHLAB_COMMON_LIBRARY "" CACHE FILEPATH "the host's libmeshlab-common.so")
 set(MESHLAB_SCALAR float CACHE STRING "the host's scalar type (float or double)")
+option(MESHLAB_HOST_NO_UNDEFINED "link plugins with -Wl,--no-undefined (OFF for plugins using symbols of the meshlab executable, such as GLArea's)" ON)
 foreach(f ML_VERSION src/common/plugins/interfaces/filter_plugin.h src/vcglib/vcg/complex/complex.h)
   if(NOT EXISTS "${MESHLAB_SOURCE_DIR}/${f}")
     message(FATAL_ERROR "MESHLAB_SOURCE_DIR: no ${f} in '${MESHLAB_SOURCE_DIR}'")
@@ -48,6 +49,8 @@ function(meshlab_host_add_plugin target)
   set_target_properties(${target} PROPERTIES AUTOMOC ON)
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${target} PRIVATE meshlab_host_common)
-  # an undefined symbol shows at link time, not when MeshLab loads the plugin
-  target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  if(MESHLAB_HOST_NO_UNDEFINED)
+    # an undefined symbol shows at link time, not when MeshLab loads the plugin
+    target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  endif()
 endfunction()
