@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Starts a MeshLab host's GUI in the trixie root under Xvfb with a mesh, takes a screenshot and
+# keeps its output: the check that the GUI starts, loads the mesh and (with --plugin) a plugin.
+#
+#   scripts/hosts/gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [--click X,Y]...
+#
+# VERSION 2022.02 or 2025.07. MESH (a host path) is copied into the root. The GUI runs from a
+# staged copy of the host (executable, libmeshlab-common.so, shaders, plugins/ = the host's
+# plugins minus --exclude'd file names plus the --plugin files, host paths), with a fresh HOME
+# whose MeshLab settings pre-answer the start-up dialogs (QSettings ~/.config/VCG/MeshLab_64bit_fp.conf:
+# informativeShown (2025.07's usage-statistics question), dontRemindMeAboutUpgrade, and the
+# global parameters MeshLab::System::sendAnonymousData / checkForUpdate = false).
+# --click X,Y clicks there (xdotool) before the screenshot, e.g. to open a menu.
+# Writes OUT.png and OUT.log (the GUI's stdout and stderr). WAIT (default 12) seconds before
+# the clicks and the screenshot.
+set -euo pipefail
+here="$(dirname "${BASH_SOURCE[0]}")"
+source "$here/lib.sh"
+source "$here/host_env.sh"
+
+version="${1:?usage: gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [--click X,Y]...}"
+out="$(realpath -m "${2:?OUT.png}")"
+mesh="$(realpath "${3:?MESH}")"
+shift 3
+plugins=() excludes=() clicks=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --plugin) plugins+=("$(realpath "$2")"); shift 2 ;;
+    --exclude) excludes+=("$2"); shift 2 ;;
+    --click) clicks+=("$2"); shift 2 ;;
+    *) echo "gui_shot.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+
+"$here/trixie_root.sh" >/dev/null
+hosts_select "$version"
+
+run="/tmp/hosts-gui-$version-$$"        # inside the root
+host_run="$HOSTS_ROOT$run"
+mkdir -p "$host_run/home/.config/VCG" "$host_run/extra"
+chmod 700 "$host_run"
+cp "$mesh" "$host_run/"
+for p in "${plugins[@]}"; do cp "$p" "$host_run/extra/"; done
+param() { printf 'MeshLab%%3A%%3ASystem%%3A%%3A%s="<Param name=\\"MeshLab::System::%s\\" type=\\"RichBool\\" value=\\"false\\"/>"\n' "$1" "$1"; }
+{
+  echo "[General]"
+  echo "informativeShown=true"
+  echo "dontRemindMeAboutUpgrade=true"
+  param sendAnonymousData
+  param checkForUpdate
+} > "$host_run/home/.config/VCG/MeshLab_64bit_fp.conf"
+
+# Stage: the plugin folder is found next to the executable (2025.07: <dir>/plugins) or, for an
+# executable in a folder named bin, in ../lib/x86_64-linux-gnu/meshlab/plugins (Debian's 2022.02).
+exclude_list="${excludes[*]:-}"
+hosts_in_root bash -ec '
+  run=$1 bin=$2 common=$3 plugins=$4 version=$5 excludes=$6
+  if [ "$version" = 2022.02 ]; then
+    mkdir -p $run/stage/bin $run/stage/lib/x86_64-linux-gnu/meshlab/plugins $run/stage/share/meshlab
+    cp $bin $run/stage/bin/meshlab
+    ln -s $common $run/stage/lib/x86_64-linux-gnu/meshlab/
+    ln -s /usr/share/meshlab/shaders $run/stage/share/meshlab/shaders
+    dest=$run/stage/lib/x86_64-linux-gnu/meshlab/plugins
+    echo $run/stage/bin/meshlab > $run/exe
+  else
+    mkdir -p $run/stage/plugins
+    cp $bin $run/stage/meshlab
+    ln -s $common $run/stage/
+    ln -s $(dirname $bin)/shaders $run/stage/shaders
+    dest=$run/stage/plugins
+    echo $run/stage/meshlab > $run/exe
+  fi
+  for p in $plugins/*.so; do
+    case " $excludes " in *" $(basename $p) "*) continue ;; esac
+    ln -s $p $dest/
+  done
+  for p in $run/extra/*.so; do [ -e "$p" ] && ln -s $p $dest/; done
+  true' hosts_gui_stage "$run" "$HOST_BIN" "$HOST_COMMON" "$HOST_PLUGINS" "$version" "$exclude_list"
+
+hosts_xvfb_start
+trap 'hosts_xvfb_stop; rm -rf "$host_run"' EXIT
+exe="$(cat "$host_run/exe")"
+# The GUI's pid (a host pid: the root shares the pid namespace) is written to $run/pid.
+hosts_in_root env HOME="$run/home" XDG_RUNTIME_DIR="$run" LD_LIBRARY_PATH="$(dirname "$HOST_COMMON")" \
+  sh -c 'echo $$ > "$1/pid"; exec "$2" "$3"' sh "$run" "$exe" "$run/$(basename "$mesh")" \
+  > "${out%.png}.log" 2>&1 &
+gui_job=$!
+sleep "${WAIT:-12}"
+for c in "${clicks[@]}"; do
+  hosts_in_root xdotool mousemove "${c%,*}" "${c#*,}" click 1
+  sleep 2
+done
+hosts_screenshot "$out"
+alive=yes
+kill -0 "$(cat "$host_run/pid")" 2>/dev/null || alive=no
+kill "$(cat "$host_run/pid")" 2>/dev/null || true
+wait "$gui_job" 2>/dev/null || true
+echo "[gui_shot] $version: screenshot $out (GUI still running at the shot: $alive), log ${out%.png}.log"
+[ "$alive" = yes ]
