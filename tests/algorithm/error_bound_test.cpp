@@ -180,19 +180,22 @@ TEST(ErrorBound, IdenticalOutputForOneAndTwoThreads)
     }
 }
 
-// With a target count above what the bound needs, the target's splits come first and the
-// bound's figures still describe the final surfels: they equal the metric's.
-TEST(ErrorBound, FiguresDescribeTheFinalSurfelsWithATargetCount)
+// One size control a run: with an error bound, a target count changes nothing (the bound sets
+// the count), and the bound's figures describe the surfels returned: they equal the metric's.
+TEST(ErrorBound, DecidesTheSizeAloneAndItsFiguresDescribeTheSurfels)
 {
     const gstest::PointSet s = gstest::FibonacciSphere(6000);
     const double bound = 0.6 * gstest::Measure(s, gstest::Resample(s)).stats.normalizedDistance.max;
-    const int boundCount = int(gstest::Resample(s, Bounded(bound)).surfels.size());
+    const ResamplingResult alone = gstest::Resample(s, Bounded(bound));
     ResamplingParams p = Bounded(bound);
-    p.targetCount = boundCount + 300;
+    p.targetCount = int(alone.surfels.size()) + 300;
+    EXPECT_EQ(p.SizeMode(), SizeControl::ErrorBound);
     const ResamplingResult r = gstest::Resample(s, p);
     gstest::ExpectValidResult(r, s);
-    EXPECT_GE(int(r.surfels.size()), p.targetCount);
-    EXPECT_GT(r.stats.splitsForTarget, 0);
+    ASSERT_EQ(r.surfels.size(), alone.surfels.size());
+    EXPECT_EQ(r.representative, alone.representative);
+    EXPECT_EQ(r.stats.splitsForTarget, 0);
+    EXPECT_EQ(r.stats.TargetMissReason(), "");
     const gstest::Measured m = gstest::Measure(s, r);
     EXPECT_NEAR(r.stats.surfaceErrorMax, m.stats.normalizedDistance.max, 1e-6 * bound + 1e-9);
     EXPECT_EQ(r.stats.pointsAboveErrorBound, 0);
