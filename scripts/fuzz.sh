@@ -28,10 +28,10 @@ while read -r name program corpus regressions; do
   mkdir -p "$work/corpus" "$work/artifacts"
   log="$work/fuzz.log"
 
-  # Every kept input once (libFuzzer runs every file of the folders, then stops).
-  if ! "$program" -runs=0 "$regressions" "$corpus" >"$work/replay.log" 2>&1; then
-    tail -n 40 "$work/replay.log" >&2
-    echo "[fuzz] $name: FAILED replaying $regressions and $corpus (log: $work/replay.log)"
+  # Every kept input once; given files, libFuzzer runs each and names it ("Running: FILE").
+  if ! "$program" -artifact_prefix="$work/replay-" "$regressions"/* "$corpus"/* >"$work/replay.log" 2>&1; then
+    grep -m1 -B 2 -A 30 -E '^==[0-9]+==ERROR|runtime error|deadly signal' "$work/replay.log" >&2 || tail -n 40 "$work/replay.log" >&2
+    echo "[fuzz] $name: FAILED on $(sed -n 's/^Running: //p' "$work/replay.log" | tail -1) (log: $work/replay.log)"
     failed=1
     continue
   fi
