@@ -44,5 +44,6 @@ for stage in ${STAGES:-release debug sanitize fuzz}; do
   summary+=("[test] $stage: $result in $((SECONDS - start)) s")
   echo "${summary[-1]}"
 done
+echo "[test] summary:"
 printf '%s\n' "${summary[@]}"
 exit "$failed"
