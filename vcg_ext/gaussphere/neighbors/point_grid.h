@@ -701,7 +701,7 @@ private:
             int below[kRankLanes] = {};
             for (int b = 0; b < inside; ++b)
                 for (int l = 0; l < kRankLanes; ++l) below[l] += int(near[b] < near[a0 + l]); // vectorized
-            const int lanes = std::min(kRankLanes, inside - a0);
+            const int lanes = std::min(int(kRankLanes), inside - a0); // a copy: no odr-use (C++14)
             for (int l = 0; l < lanes; ++l) {
                 const int rank = std::min(below[l], k); // k: the scratch slot
                 nearest[rank] = DistanceIndexKey(near[a0 + l], nearId[a0 + l]);
@@ -731,7 +731,7 @@ private:
             // Ranks of k and beyond all land in the scratch slot nearest[k]: no branch to mispredict.
             alignas(32) int rank[kRankLanes];
             _mm256_store_si256(reinterpret_cast<__m256i *>(rank), _mm256_min_epi32(below, kk));
-            const int lanes = std::min(kRankLanes, inside - a0);
+            const int lanes = std::min(int(kRankLanes), inside - a0); // a copy: no odr-use (C++14)
             for (int l = 0; l < lanes; ++l) nearest[rank[l]] = DistanceIndexKey(near[a0 + l], nearId[a0 + l]);
             const __m256i top = _mm256_and_si256(_mm256_cmpgt_epi32(kk, below), _mm256_cmpgt_epi32(_mm256_set1_epi32(lanes), laneIndex));
             ranked = _mm256_sub_epi32(ranked, top);

@@ -185,6 +185,11 @@ private:
 constexpr double kMergePlaneWeight = 16.0;
 constexpr double kMergeSpreadWeight = 0.1;
 
+/// The upper triangle of a symmetric 3x3 matrix, row by row: (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
+/// At namespace scope, not in MergeCostModel: indexing odr-uses the arrays, and C++14 has no
+/// inline variables to define a class member in a header.
+constexpr int kMomentRow[6] = {0, 0, 0, 1, 1, 2}, kMomentColumn[6] = {0, 1, 2, 1, 2, 2};
+
 /// The cost of merging two clusters (file header), from per-cluster sums that give a merged
 /// cluster's errors in O(1). Positions are taken relative to the centroid of all points, which
 /// keeps the second moments of a model far from the origin from losing the clusters' spread to
@@ -212,7 +217,7 @@ public:
                 s.size += 1;
                 s.normalSum += detail::ToEigen(normals[*i]);
                 s.positionSum += p;
-                for (int e = 0; e < 6; ++e) s.moment[e] += p[kRow[e]] * p[kColumn[e]];
+                for (int e = 0; e < 6; ++e) s.moment[e] += p[kMomentRow[e]] * p[kMomentColumn[e]];
             }
         }
     }
@@ -237,14 +242,11 @@ public:
     void Merge(int keep, int gone) { sums_[keep].Add(sums_[gone]); }
 
 private:
-    // The upper triangle of a symmetric 3x3 matrix, row by row: (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
-    static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kColumn[6] = {0, 1, 2, 1, 2, 2};
-
     struct Sums // 104 bytes a cluster: at 20 million points merging holds millions of them
     {
         double size = 0;
         Eigen::Vector3d normalSum = Eigen::Vector3d::Zero(), positionSum = Eigen::Vector3d::Zero();
-        double moment[6] = {0, 0, 0, 0, 0, 0}; // sum of p p^T, upper triangle (kRow, kColumn)
+        double moment[6] = {0, 0, 0, 0, 0, 0}; // sum of p p^T, upper triangle (kMomentRow, kMomentColumn)
 
         void Add(const Sums &o)
         {
@@ -258,7 +260,7 @@ private:
         double PlaneError() const
         {
             Eigen::Matrix3d full;
-            for (int e = 0; e < 6; ++e) full(kRow[e], kColumn[e]) = full(kColumn[e], kRow[e]) = moment[e];
+            for (int e = 0; e < 6; ++e) full(kMomentRow[e], kMomentColumn[e]) = full(kMomentColumn[e], kMomentRow[e]) = moment[e];
             const Eigen::Matrix3d scatter = full - positionSum * positionSum.transpose() / size;
             const double length = normalSum.norm();
             if (!(length > 1e-6 * size)) return std::max(0.0, scatter.trace());
