@@ -72,8 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     vcg::gaussphere::ResamplingParams param;
     param.subdivisionLevel = 4;
     param.neighborCount = 8;
-    param.maxIterations = 3;
-    param.adaptThreads = false;
+    param.tuning.maxIterations = 3;
     if (size % 2 == 0) {
         param.targetCount = int(mesh.vert.size() / 4) + 1;
         param.maxErrorExchanges = 4;
