@@ -9,7 +9,8 @@
 #   - meshlab (2022.02) and the libraries of its plugins that the package does not depend on
 #     (without them MeshLab opens a modal dialog listing the plugins that failed to load);
 #   - xvfb xauth libgl1-mesa-dri imagemagick xdotool (headless GUI runs, screenshots);
-#   - the build dependencies of out-of-tree plugins and of a MeshLab 2025.07 MINI build;
+#   - the build dependencies of out-of-tree plugins (the project's: nanoflann) and of a
+#     MeshLab 2025.07 MINI build;
 #   - trixie's meshlab source package, unpacked (Debian patches applied) at
 #     /usr/src/meshlab (a symlink to the versioned folder): the 2022.02 plugin API headers.
 #     The root's apt sources carry a deb-src entry for it.
@@ -27,6 +28,7 @@ packages=(
   cmake g++ make pkg-config
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev
   libglew-dev libeigen3-dev libgtest-dev
+  libnanoflann-dev
 )
 # The shared libraries of MeshLab 2022.02's plugins that trixie's meshlab package misses:
 # muparser (filter_func), mpfr (filter_mesh_booleans), qhull_r (filter_qhull), lib3ds (io_3ds),

@@ -327,7 +327,11 @@ private:
         {
             if (k <= 0) return 0;
             NearestKeys result{i, k, nearest};
+#if NANOFLANN_VERSION >= 0x150 // renamed in 1.5 (Debian 13 has 1.7, Debian 12 1.4)
+            tree_.findNeighbors(result, &source_.points[i][0], nanoflann::SearchParameters());
+#else
             tree_.findNeighbors(result, &source_.points[i][0], nanoflann::SearchParams());
+#endif
             return result.found;
         }
 
@@ -359,12 +363,14 @@ private:
         /// subtrees whose bound is at most that.
         struct NearestKeys
         {
+            typedef double DistanceType;
             int self, k;
             std::uint64_t *nearest;
             int found = 0;
             double bound = std::numeric_limits<double>::max();
 
             bool full() const { return found == k; }
+            void sort() const {} // nanoflann 1.5+ calls it; nearest[] is kept sorted
             double worstDist() const { return bound; }
             bool addPoint(double d2, std::uint32_t id)
             {

@@ -1,6 +1,6 @@
-// MeshLab filter plugin: Gaussian Sphere Feature-Sensitive Resampling.
-// MeshLab glue only: parameters, preconditions, layers and log; the algorithm is
-// vcg_ext/gaussphere/resampling.h.
+// MeshLab 2020.09 filter plugin (MeshFilterInterface): Gaussian Sphere Feature-Sensitive
+// Resampling. A thin adapter: what every host shares is in ../resample_layer.h; the algorithm
+// is vcg_ext/gaussphere/resampling.h.
 #ifndef FILTER_GAUSSPHERE_H
 #define FILTER_GAUSSPHERE_H
 
@@ -26,10 +26,6 @@ public:
     int postCondition(QAction *) const override;
     void initParameterSet(QAction *, MeshModel &, RichParameterList &par) override;
     bool applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb) override;
-
-private:
-    bool fail(const QString &message);
-    bool resample(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
 };
 
 #endif
