@@ -163,7 +163,7 @@ void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
         resources.renderer->render(items, projection.data(), {viewport[0], viewport[1], viewport[2], viewport[3]},
                                    lightingOfCurrentView(), panel->settings());
     } catch (const std::exception &error) {
-        if (loggedMessages.insert({-1, error.what()}).second) // not about one layer: once per session
+        if (loggedMessages.insert({-1, error.what()}).second) // not about one layer: once per MeshLab run
             document.Log.Log(GLLogStream::WARNING, std::string("Ellipse Splatting failed: ") + error.what());
     }
 }

@@ -85,7 +85,7 @@ done
 
 echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((SECONDS - started)) s." >> "$out/header.txt"
 # Debian's python3-matplotlib lives in the system interpreter, which a pyenv (or venv)
-# python3 earlier in PATH does not see.
+# python3 ahead in PATH does not see.
 python=python3
 /usr/bin/python3 -c 'import matplotlib' 2>/dev/null && python=/usr/bin/python3
 "$python" "$root/bench/report.py" --table1 "$raw/table1.csv" --figure7 "$raw/figure7.csv" \

@@ -1,6 +1,6 @@
 # Sourced by the rendering benchmark scripts. find_numpy_python NAME: sets `py` to a python3
 # that imports numpy and matplotlib ($PYTHON first, then python3, then Debian's own: a pyenv
-# python3 earlier in PATH lacks Debian's python3-numpy and python3-matplotlib).
+# python3 ahead in PATH lacks Debian's python3-numpy and python3-matplotlib).
 find_numpy_python() {
   py=""
   for candidate in ${PYTHON:-} python3 /usr/bin/python3; do
