@@ -94,7 +94,7 @@ std::vector<long long> ParseList(const std::string &text)
 
 /// The stages as the resampler announces them through its callback. Each progress call
 /// closes the interval opened by the previous one: the time and the memory peak between
-/// two calls belong to the stage the earlier call named.
+/// two calls belong to the stage the first of them named.
 struct CallbackEvent
 {
     Clock::time_point time;

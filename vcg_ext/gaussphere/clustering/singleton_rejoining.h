@@ -98,7 +98,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         }
         for (int t : touched) changed[t] = 0; // the previous pass's flags
         touched.clear();
-        const size_t earlierJoins = joins.size();
+        const size_t joinsBefore = joins.size();
         size_t left = 0;
         for (size_t s = 0; s < singletons.size(); ++s) {
             const int i = singletons[s], t = target[s];
@@ -114,8 +114,8 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         singletons.resize(left);
         if (moved == 0) break;
         joined += moved;
-        std::sort(joins.begin() + earlierJoins, joins.end());
-        std::inplace_merge(joins.begin(), joins.begin() + earlierJoins, joins.end());
+        std::sort(joins.begin() + joinsBefore, joins.end());
+        std::inplace_merge(joins.begin(), joins.begin() + joinsBefore, joins.end());
         SortUnique(touched);
         for (int t : touched) changed[t] = 1;
 #pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
