@@ -5,7 +5,10 @@
 // multiplied by a power of two that brings their bounding-box diagonal into [1, 2): in binary
 // floating point that product is exact, so the resampling of a model in millimetres, metres or
 // light years is the same result up to the scale, and no squared distance of it over- or
-// underflows (coordinates near the float limit, 3e38, or near 1e-30 otherwise do).
+// underflows (coordinates near the float limit, 3e38, or near 1e-30 otherwise do). At that scale
+// points closer than about 1e-19 of the diagonal share one position in the neighbour search (their
+// squared distance underflows): a model next to an outlier 1e20 times its size away becomes a few
+// surfels, finite ones (tests/algorithm/unit_scale_test.cpp, FarOutliersGiveFiniteSurfels).
 #ifndef VCG_EXT_GAUSSPHERE_USABLE_POINTS_H
 #define VCG_EXT_GAUSSPHERE_USABLE_POINTS_H
 
