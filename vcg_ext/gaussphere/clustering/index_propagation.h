@@ -44,6 +44,141 @@ struct IndexPropagationParams
     PropagationOrder order = PropagationOrder::DepthFirst; ///< the paper uses a stack
 };
 
+namespace detail {
+
+/// PropagateIndices' mark of a point still to label.
+constexpr int kUnlabelled = -2;
+
+/// Marks every point not pre-marked -1 as kUnlabelled; returns the number of triangles
+/// (one more than the largest index in `triangle`).
+inline int ResetPropagationLabels(const IndexArray &triangle, int n, int *label)
+{
+    const int unlabelled = kUnlabelled;
+    int triangleCount = 0;
+#pragma omp parallel for schedule(static) reduction(max : triangleCount)
+    for (int i = 0; i < n; ++i) {
+        assert(triangle[i] >= 0);
+        label[i] = label[i] == -1 ? -1 : unlabelled;
+        triangleCount = std::max(triangleCount, triangle[i] + 1);
+    }
+    return triangleCount;
+}
+
+/// The occupied triangles, largest first (stable); `count` receives every triangle's number of
+/// points to label (at level 256 the sphere has 1.3 million triangles, most of them empty).
+inline std::vector<int> OccupiedTrianglesBySize(const IndexArray &triangle, const int *label, int n,
+                                                int triangleCount, IndexArray &count)
+{
+    count.assign(size_t(triangleCount), 0);
+    for (int i = 0; i < n; ++i)
+        if (label[i] != -1) ++count[size_t(triangle[i])];
+    std::vector<int> byCount;
+    for (int t = 0; t < triangleCount; ++t)
+        if (count[t] > 0) byCount.push_back(t);
+    std::stable_sort(byCount.begin(), byCount.end(), [&](int a, int b) { return count[a] > count[b]; });
+    return byCount;
+}
+
+/// Gives each triangle of `byCount` (largest first) to the thread of least load so far, out
+/// of `team` threads: the counts' greedy balance.
+inline void BalanceTriangleOwners(const std::vector<int> &byCount, const IndexArray &count, int team,
+                                  IndexArray &owner)
+{
+    std::vector<long long> load(size_t(team), 0);
+    for (int t : byCount) {
+        const int least = int(std::min_element(load.begin(), load.end()) - load.begin());
+        owner[t] = least;
+        load[size_t(least)] += count[t];
+    }
+}
+
+/// A point waiting in the propagation, `depth` hops from its seed.
+struct PropagationVisit { int point; int depth; };
+
+/// Spreads the label `position` from `seed` (already labelled) to the unlabelled points of its
+/// triangle `t` that pass the normal test, up to the depth limit. `pending` is working space:
+/// one vector serves both orders, a stack popped at the back or a queue read from `head`.
+inline void GrowCluster(const PointArray &normals, const IndexArray &triangle, const NeighborGraph &graph,
+                        const IndexPropagationParams &param, float maxChord2, int seed, int t, int position,
+                        int *label, std::vector<PropagationVisit> &pending)
+{
+    const int unlabelled = kUnlabelled;
+    const int othersLabel = -3; // read for a neighbour of another triangle instead of its label
+    typedef PropagationVisit Visit;
+    pending.clear();
+    size_t head = 0;
+    pending.push_back({seed, 0});
+    while (head < pending.size()) {
+        Visit v;
+        if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
+        else v = pending[head++];
+        if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
+        const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
+        // Without branches: every neighbour is written past the end and the end moves
+        // past it only if it joins (whether one does is unpredictable: a branch mispredicts).
+        // The joined are labelled after the scan (neighbours are distinct: the same
+        // joins), and their neighbour lists, visited soon, fetched ahead. A neighbour of
+        // another thread's triangle has its label read too, though never used: labels
+        // are read and written as relaxed atomics (plain moves on x86).
+        const int *q = graph.begin(v.point), *qEnd = graph.end(v.point);
+        const size_t before = pending.size();
+        pending.resize(before + size_t(qEnd - q));
+        Visit *next = pending.data() + before;
+        for (; q != qEnd; ++q) {
+            const int j = *q;
+            const bool sameTriangle = triangle[j] == t;
+            const int *labelOfJ = sameTriangle ? label + j : &othersLabel;
+            const bool joins = sameTriangle & (__atomic_load_n(labelOfJ, __ATOMIC_RELAXED) == unlabelled) &
+                               ((normals[j] - ref).SquaredNorm() <= maxChord2);
+            *next = {j, v.depth + 1};
+            next += joins;
+        }
+        pending.resize(size_t(next - pending.data()));
+        for (size_t e = before; e < pending.size(); ++e) {
+            __atomic_store_n(label + pending[e].point, position, __ATOMIC_RELAXED);
+            __builtin_prefetch(graph.begin(pending[e].point));
+        }
+    }
+}
+
+/// On the reporter thread, calls `report` every 20 ms until no thread is `sweeping` or the
+/// caller cancelled; it yields rather than sleeps, since the others are often done within
+/// microseconds.
+template <class Report>
+void ReportUntilSweepsEnd(bool reporter, const std::atomic<int> &sweeping, const std::atomic<bool> &cancelled,
+                          Report &report)
+{
+    auto lastReport = std::chrono::steady_clock::now();
+    while (reporter && sweeping > 0 && !cancelled) {
+        std::this_thread::yield();
+        const auto now = std::chrono::steady_clock::now();
+        if (now - lastReport > std::chrono::milliseconds(20)) {
+            lastReport = now;
+            report();
+        }
+    }
+}
+
+/// Replaces each provisional label (its seed's position in the seed order) by the number of
+/// its cluster, the clusters numbered in the order of their seeds; returns the cluster count.
+template <class SeedAt>
+int NumberClustersBySeed(int seedCount, SeedAt seedAt, int n, int *label)
+{
+    IndexArray idOfPosition(seedCount);
+    int next = 0;
+    for (int s = 0; s < seedCount; ++s) {
+        const int l = label[seedAt(s)];
+        idOfPosition[s] = next;
+        next += int(l == s);
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i)
+        if (label[i] >= 0) label[i] = idOfPosition[label[i]];
+    return next;
+}
+
+} // namespace detail
+
 /// Labels every point whose `clusters.label` is not -1 (points pre-marked -1 are
 /// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i (>= 0 for every
 /// point, excluded ones included); seeds are taken in `seedOrder` (a permutation of the
@@ -64,26 +199,14 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
                              const IndexPropagationParams &param, Clustering &clusters,
                              const std::function<bool(double)> &progress = nullptr)
 {
-    const int unlabelled = -2;
+    const int unlabelled = detail::kUnlabelled;
     const int n = int(clusters.label.size());
     int *label = clusters.label.data();
-    int triangleCount = 0;
-#pragma omp parallel for schedule(static) reduction(max : triangleCount)
-    for (int i = 0; i < n; ++i) {
-        assert(triangle[i] >= 0);
-        label[i] = label[i] == -1 ? -1 : unlabelled;
-        triangleCount = std::max(triangleCount, triangle[i] + 1);
-    }
+    const int triangleCount = detail::ResetPropagationLabels(triangle, n, label);
 
-    // Each thread takes whole triangles: the counts' greedy balance, largest first (only the
-    // occupied ones: at level 256 the sphere has 1.3 million triangles).
-    IndexArray count(size_t(triangleCount), 0);
-    for (int i = 0; i < n; ++i)
-        if (label[i] != -1) ++count[size_t(triangle[i])];
-    std::vector<int> byCount;
-    for (int t = 0; t < triangleCount; ++t)
-        if (count[t] > 0) byCount.push_back(t);
-    std::stable_sort(byCount.begin(), byCount.end(), [&](int a, int b) { return count[a] > count[b]; });
+    // Each thread takes whole triangles (only the occupied ones), balanced by their counts.
+    IndexArray count;
+    const std::vector<int> byCount = detail::OccupiedTrianglesBySize(triangle, label, n, triangleCount, count);
     IndexArray owner(size_t(triangleCount), 0);
 
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
@@ -99,12 +222,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
 #pragma omp single
         { // for the threads the team actually has (fewer when nested, for instance)
             sweeping = team;
-            std::vector<long long> load(size_t(team), 0);
-            for (int t : byCount) {
-                const int least = int(std::min_element(load.begin(), load.end()) - load.begin());
-                owner[t] = least;
-                load[size_t(least)] += count[t];
-            }
+            detail::BalanceTriangleOwners(byCount, count, team, owner);
         }
         // Only the calling thread (OpenMP's master) talks to the caller's callback.
         const int self = omp_get_thread_num();
@@ -113,11 +231,7 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
         auto report = [&]() {
             if (progress && !progress(double(swept) / sweepTotal)) cancelled = true;
         };
-        struct Visit { int point; int depth; };
-        // One vector serves both orders: a stack popped at the back, or a queue read from
-        // `head` (cleared when a seed's cluster is complete).
-        std::vector<Visit> pending;
-        const int othersLabel = -3; // read for a neighbour of another triangle instead of its label
+        std::vector<detail::PropagationVisit> pending; // cleared when a seed's cluster is complete
         // Every thread walks all of seedOrder, so that each triangle's seeds come in its order.
         for (int position = 0; position < seedCount; ++position) {
             if (position % reportEvery == 0) {
@@ -131,68 +245,16 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
             if (owner[t] != self || label[seed] != unlabelled) continue;
             // Provisional label: the seed's position, unique per cluster; numbered below.
             __atomic_store_n(label + seed, position, __ATOMIC_RELAXED);
-            pending.clear();
-            size_t head = 0;
-            pending.push_back({seed, 0});
-            while (head < pending.size()) {
-                Visit v;
-                if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
-                else v = pending[head++];
-                if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
-                const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
-                // Without branches: every neighbour is written past the end and the end moves
-                // past it only if it joins (whether one does is unpredictable: a branch mispredicts).
-                // The joined are labelled after the scan (neighbours are distinct: the same
-                // joins), and their neighbour lists, visited soon, fetched ahead. A neighbour of
-                // another thread's triangle has its label read too, though never used: labels
-                // are read and written as relaxed atomics (plain moves on x86).
-                const int *q = graph.begin(v.point), *qEnd = graph.end(v.point);
-                const size_t before = pending.size();
-                pending.resize(before + size_t(qEnd - q));
-                Visit *next = pending.data() + before;
-                for (; q != qEnd; ++q) {
-                    const int j = *q;
-                    const bool sameTriangle = triangle[j] == t;
-                    const int *labelOfJ = sameTriangle ? label + j : &othersLabel;
-                    const bool joins = sameTriangle & (__atomic_load_n(labelOfJ, __ATOMIC_RELAXED) == unlabelled) &
-                                       ((normals[j] - ref).SquaredNorm() <= maxChord2);
-                    *next = {j, v.depth + 1};
-                    next += joins;
-                }
-                pending.resize(size_t(next - pending.data()));
-                for (size_t e = before; e < pending.size(); ++e) {
-                    __atomic_store_n(label + pending[e].point, position, __ATOMIC_RELAXED);
-                    __builtin_prefetch(graph.begin(pending[e].point));
-                }
-            }
+            detail::GrowCluster(normals, triangle, graph, param, maxChord2, seed, t, position, label, pending);
         }
-        // The reporter keeps reporting (and listening for a cancel) until every thread is done;
-        // it yields rather than sleeps, since the others are often done within microseconds.
+        // The reporter keeps reporting (and listening for a cancel) until every thread is done.
         --sweeping;
-        auto lastReport = std::chrono::steady_clock::now();
-        while (reporter && sweeping > 0 && !cancelled) {
-            std::this_thread::yield();
-            const auto now = std::chrono::steady_clock::now();
-            if (now - lastReport > std::chrono::milliseconds(20)) {
-                lastReport = now;
-                report();
-            }
-        }
+        detail::ReportUntilSweepsEnd(reporter, sweeping, cancelled, report);
     }
     if (cancelled) return false;
 
     // Number the clusters by their seeds' positions in seedOrder.
-    IndexArray idOfPosition(seedCount);
-    int next = 0;
-    for (int s = 0; s < seedCount; ++s) {
-        const int l = label[seedAt(s)];
-        idOfPosition[s] = next;
-        next += int(l == s);
-    }
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i)
-        if (label[i] >= 0) label[i] = idOfPosition[label[i]];
-    clusters.clusterCount = next;
+    clusters.clusterCount = detail::NumberClustersBySeed(seedCount, seedAt, n, label);
     return true;
 }
 

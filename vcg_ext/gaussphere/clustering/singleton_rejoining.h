@@ -33,6 +33,106 @@ constexpr size_t kRejoinParallelMin = 512;
 /// How many singletons ahead a pass fetches the next one's data.
 constexpr int kRejoinPrefetchAhead = 8;
 
+namespace detail {
+
+/// Each cluster's size and the sum of its members' normals, in point order.
+inline void SumClusterNormals(const PointArray &normals, const ClusterMembers &before, int count,
+                              IndexArray &size, PointArray &normalSum)
+{
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < count; ++c) {
+        size[c] = before.Size(c);
+        vcg::Point3f sum(0, 0, 0);
+        for (const int *m = before.begin(c); m != before.end(c); ++m) sum += normals[*m]; // in point order
+        normalSum[c] = sum;
+    }
+}
+
+/// One pass's decisions: target[s] is the cluster singletons[s] joins, -1 for none, taken
+/// against the clustering as it stands at the start of the pass. After the first pass only a
+/// singleton next to a `changed` cluster is looked at again.
+inline void ChooseRejoinTargets(const PointArray &normals, const NeighborGraph &graph, const IndexArray &label,
+                                const IndexArray &size, const PointArray &normalSum,
+                                const FlatVector<char> &changed, const IndexArray &singletons, int pass,
+                                float maxScore, IndexArray &target)
+{
+    // Later passes have few singletons left, for which threads would cost more than they save.
+#pragma omp parallel for schedule(dynamic, 256) if (singletons.size() > kRejoinParallelMin)
+    for (int s = 0; s < int(singletons.size()); ++s) {
+        const int i = singletons[s], own = label[i];
+        // Singletons lie scattered: fetch a later one's neighbour list and label ahead
+        // (the decisions are bound by memory latency, not arithmetic).
+        if (s + kRejoinPrefetchAhead < int(singletons.size())) {
+            __builtin_prefetch(graph.begin(singletons[s + kRejoinPrefetchAhead]));
+            __builtin_prefetch(label.data() + singletons[s + kRejoinPrefetchAhead]);
+        }
+        target[s] = -1;
+        // After the first pass a singleton left over found no cluster; only a change in a
+        // neighbour's cluster can give it one.
+        const auto nextToChange = [&](int q) { return label[q] >= 0 && changed[label[q]]; };
+        if (pass > 0 && std::none_of(graph.begin(i), graph.end(i), nextToChange)) continue;
+        float bestScore = maxScore;
+        int best = -1;
+        for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
+            const int l = label[*q];
+            if (l < 0 || l == own || size[l] < 2) continue;
+            const float norm = normalSum[l].Norm();
+            const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
+            if (score < bestScore || (score == bestScore && (best < 0 || l < best))) {
+                bestScore = score;
+                best = l;
+            }
+        }
+        target[s] = best;
+    }
+}
+
+/// Moves every singleton with a target into it: its own cluster empties, the join is appended
+/// to `joins` and the target to `touched`. Keeps the singletons left, in order; returns the
+/// number moved.
+inline int MoveSingletons(const IndexArray &target, IndexArray &singletons, IndexArray &label, IndexArray &size,
+                          PointArray &normalSum, std::vector<std::pair<int, int>> &joins,
+                          std::vector<int> &touched)
+{
+    size_t left = 0;
+    for (size_t s = 0; s < singletons.size(); ++s) {
+        const int i = singletons[s], t = target[s];
+        if (t < 0) { singletons[left++] = i; continue; }
+        size[label[i]] = 0;
+        normalSum[label[i]] = vcg::Point3f(0, 0, 0);
+        label[i] = t;
+        ++size[t];
+        joins.push_back({t, i});
+        touched.push_back(t);
+    }
+    const int moved = int(singletons.size() - left);
+    singletons.resize(left);
+    return moved;
+}
+
+/// Sums again the normals of the `touched` clusters (sorted, unique) over their members in
+/// point order: those of `before` merged with the singletons in `joins` (sorted).
+inline void ResumJoinedClusters(const PointArray &normals, const ClusterMembers &before,
+                                const std::vector<std::pair<int, int>> &joins, const std::vector<int> &touched,
+                                PointArray &normalSum)
+{
+#pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
+    for (int u = 0; u < int(touched.size()); ++u) {
+        const int t = touched[u];
+        // Merge the members that stayed with the singletons that joined, both ascending.
+        auto j = std::lower_bound(joins.begin(), joins.end(), std::make_pair(t, -1));
+        const int *m = before.begin(t);
+        vcg::Point3f sum(0, 0, 0);
+        while (m != before.end(t) || (j != joins.end() && j->first == t)) {
+            const bool takeJoin = j != joins.end() && j->first == t && (m == before.end(t) || j->second < *m);
+            sum += normals[takeJoin ? (j++)->second : *m++];
+        }
+        normalSum[t] = sum;
+    }
+}
+
+} // namespace detail
+
 /// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
 /// Postcondition: clusters may contain empty labels; call Compact() when needed.
 ///
@@ -49,13 +149,7 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     const int count = clusters.clusterCount;
     IndexArray size(count);
     PointArray normalSum(count);
-#pragma omp parallel for schedule(static)
-    for (int c = 0; c < count; ++c) {
-        size[c] = before.Size(c);
-        vcg::Point3f sum(0, 0, 0);
-        for (const int *m = before.begin(c); m != before.end(c); ++m) sum += normals[*m]; // in point order
-        normalSum[c] = sum;
-    }
+    detail::SumClusterNormals(normals, before, count, size, normalSum);
     IndexArray singletons;
     for (int c = 0; c < count; ++c)
         if (size[c] == 1) singletons.push_back(*before.begin(c));
@@ -66,71 +160,19 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     FlatVector<char> changed(count, 0);      // ... flagged for the next one
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
-        // Decisions against the clustering as it stands at the start of the pass. Later passes
-        // have few singletons left, for which threads would cost more than they save.
-#pragma omp parallel for schedule(dynamic, 256) if (singletons.size() > kRejoinParallelMin)
-        for (int s = 0; s < int(singletons.size()); ++s) {
-            const int i = singletons[s], own = label[i];
-            // Singletons lie scattered: fetch a later one's neighbour list and label ahead
-            // (the decisions are bound by memory latency, not arithmetic).
-            if (s + kRejoinPrefetchAhead < int(singletons.size())) {
-                __builtin_prefetch(graph.begin(singletons[s + kRejoinPrefetchAhead]));
-                __builtin_prefetch(label.data() + singletons[s + kRejoinPrefetchAhead]);
-            }
-            target[s] = -1;
-            // After the first pass a singleton left over found no cluster; only a change in a
-            // neighbour's cluster can give it one.
-            const auto nextToChange = [&](int q) { return label[q] >= 0 && changed[label[q]]; };
-            if (pass > 0 && std::none_of(graph.begin(i), graph.end(i), nextToChange)) continue;
-            float bestScore = maxScore;
-            int best = -1;
-            for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
-                const int l = label[*q];
-                if (l < 0 || l == own || size[l] < 2) continue;
-                const float norm = normalSum[l].Norm();
-                const float score = norm > 0 ? 1.f - normals[i].dot(normalSum[l]) / norm : 2.f;
-                if (score < bestScore || (score == bestScore && (best < 0 || l < best))) {
-                    bestScore = score;
-                    best = l;
-                }
-            }
-            target[s] = best;
-        }
+        detail::ChooseRejoinTargets(normals, graph, label, size, normalSum, changed, singletons, pass, maxScore,
+                                    target);
         for (int t : touched) changed[t] = 0; // the previous pass's flags
         touched.clear();
         const size_t joinsBefore = joins.size();
-        size_t left = 0;
-        for (size_t s = 0; s < singletons.size(); ++s) {
-            const int i = singletons[s], t = target[s];
-            if (t < 0) { singletons[left++] = i; continue; }
-            size[label[i]] = 0;
-            normalSum[label[i]] = vcg::Point3f(0, 0, 0);
-            label[i] = t;
-            ++size[t];
-            joins.push_back({t, i});
-            touched.push_back(t);
-        }
-        const int moved = int(singletons.size() - left);
-        singletons.resize(left);
+        const int moved = detail::MoveSingletons(target, singletons, label, size, normalSum, joins, touched);
         if (moved == 0) break;
         joined += moved;
         std::sort(joins.begin() + joinsBefore, joins.end());
         std::inplace_merge(joins.begin(), joins.begin() + joinsBefore, joins.end());
         SortUnique(touched);
         for (int t : touched) changed[t] = 1;
-#pragma omp parallel for schedule(dynamic, 256) if (touched.size() > kRejoinParallelMin)
-        for (int u = 0; u < int(touched.size()); ++u) {
-            const int t = touched[u];
-            // Merge the members that stayed with the singletons that joined, both ascending.
-            auto j = std::lower_bound(joins.begin(), joins.end(), std::make_pair(t, -1));
-            const int *m = before.begin(t);
-            vcg::Point3f sum(0, 0, 0);
-            while (m != before.end(t) || (j != joins.end() && j->first == t)) {
-                const bool takeJoin = j != joins.end() && j->first == t && (m == before.end(t) || j->second < *m);
-                sum += normals[takeJoin ? (j++)->second : *m++];
-            }
-            normalSum[t] = sum;
-        }
+        detail::ResumJoinedClusters(normals, before, joins, touched, normalSum);
     }
     return joined;
 }

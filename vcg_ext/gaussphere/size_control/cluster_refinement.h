@@ -385,6 +385,123 @@ inline std::unique_ptr<MergeBasis> BuildMergeBasis(const PointArray &points, con
         new MergeBasis{std::move(adjacent), MergeCostModel(points, normals, clusters, members, weightWidth)});
 }
 
+namespace detail {
+
+/// MergeToCount's state: which cluster each merged one went to, and the queue of candidate
+/// merges, cheapest first.
+class MergeQueue
+{
+public:
+    /// A candidate is costed after `when` merges; it is stale once a side merged away or took
+    /// another cluster in since (changed[side] > when): the merge that changed a side costed that
+    /// side's pairs anew.
+    struct Candidate { double cost; int a, b, when; };
+    struct Later
+    {
+        bool operator()(const Candidate &x, const Candidate &y) const
+        {
+            return x.cost > y.cost || (x.cost == y.cost && (x.a > y.a || (x.a == y.a && x.b > y.b)));
+        }
+    };
+
+    /// The linked pairs of `count` clusters, none merged yet.
+    /// The heap is one buffer, a quarter larger than the pairs: when full, stale entries are
+    /// dropped (the order of the valid ones is a total order: the same merges) before it grows,
+    /// so that the queue stays near the pairs' size (a doubling vector can hold 3 times as many
+    /// at its peak).
+    MergeQueue(const MergeCostModel &model, const std::vector<std::vector<int>> &adjacent, int count)
+        : parent(count), changed(count, 0),
+          heap(LinkedPairs<Candidate>(
+              model, adjacent, [](double cost, int a, int b) { return Candidate{cost, a, b, 0}; }, 0.25))
+    {
+        for (int k = 0; k < count; ++k) parent[k] = k;
+        std::make_heap(heap.begin(), heap.end(), Later());
+    }
+
+    /// The cluster that k went to.
+    int Root(int k)
+    {
+        while (parent[k] != k) k = parent[k] = parent[parent[k]];
+        return k;
+    }
+    bool Stale(const Candidate &c)
+    {
+        return Root(c.a) != c.a || Root(c.b) != c.b || changed[c.a] > c.when || changed[c.b] > c.when;
+    }
+    void Push(const Candidate &c)
+    {
+        if (heap.size() == heap.capacity() && !heap.empty()) {
+            heap.erase(std::remove_if(heap.begin(), heap.end(), [this](const Candidate &x) { return Stale(x); }),
+                       heap.end());
+            std::make_heap(heap.begin(), heap.end(), Later());
+            if (heap.size() > heap.capacity() / 2) heap.reserve(heap.capacity() + heap.capacity() / 2);
+        }
+        heap.push_back(c);
+        std::push_heap(heap.begin(), heap.end(), Later());
+    }
+    Candidate Pop()
+    {
+        std::pop_heap(heap.begin(), heap.end(), Later());
+        const Candidate top = heap.back();
+        heap.pop_back();
+        return top;
+    }
+
+    std::vector<int> parent;  ///< union-find forest of the merged clusters
+    std::vector<int> changed; ///< per cluster: the merges done when it last took another in
+    std::vector<Candidate> heap;
+};
+
+/// Merges the clusters of `top` (not stale), the `merges`-th merge: the smaller adjacency list
+/// goes into the larger one, whose pairs are costed anew.
+inline void MergeCandidate(const MergeQueue::Candidate &top, int merges, MergeQueue &queue,
+                           std::vector<std::vector<int>> &adjacent, MergeCostModel &model)
+{
+    int keep = top.a, gone = top.b;
+    if (adjacent[keep].size() < adjacent[gone].size()) std::swap(keep, gone);
+    queue.parent[gone] = keep;
+    model.Merge(keep, gone);
+    queue.changed[keep] = merges + 1;
+    std::vector<int> merged;
+    for (int x : adjacent[keep]) merged.push_back(queue.Root(x));
+    for (int x : adjacent[gone]) merged.push_back(queue.Root(x));
+    SortUnique(merged);
+    merged.erase(std::remove(merged.begin(), merged.end(), keep), merged.end());
+    adjacent[keep] = std::move(merged);
+    std::vector<int>().swap(adjacent[gone]);
+    for (int x : adjacent[keep]) {
+        const int a = std::min(keep, x), b = std::max(keep, x);
+        queue.Push({model.Cost(a, b), a, b, merges + 1});
+    }
+}
+
+/// Labels every point with its cluster's root, compacts the clusters, and replaces `adjacent`
+/// (of the `count` clusters before merging) by the links of the compacted ones.
+inline void RelabelMerged(int count, MergeQueue &queue, std::vector<std::vector<int>> &adjacent,
+                          Clustering &clusters)
+{
+    for (int &l : clusters.label)
+        if (l >= 0) l = queue.Root(l);
+    const IndexArray remap = clusters.Compact();
+    // A merged cluster's list holds the roots of its parts' links when it was last merged: their
+    // roots now, renumbered, are the links of its members.
+    std::vector<std::vector<int>> links(size_t(clusters.clusterCount));
+    for (int c = 0; c < count; ++c) {
+        if (remap[c] < 0) continue;
+        std::vector<int> &list = links[size_t(remap[c])];
+        for (int x : adjacent[size_t(c)]) {
+            const int linked = remap[queue.Root(x)];
+            if (linked >= 0 && linked != remap[c]) list.push_back(linked);
+        }
+        SortUnique(list);
+        list.shrink_to_fit();
+        std::vector<int>().swap(adjacent[size_t(c)]);
+    }
+    adjacent.swap(links);
+}
+
+} // namespace detail
+
 /// Merges neighbouring clusters, cheapest first (MergeCostModel), until `target` remain (or no
 /// two clusters are linked), from `basis` = BuildMergeBasis(clusters): the graph is not read
 /// again (the caller may cut it meanwhile). Returns the number of merges; clusters are compacted
@@ -401,88 +518,22 @@ inline int MergeToCount(MergeBasis &basis, int target, Clustering &clusters,
     const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
     std::vector<std::vector<int>> &adjacent = basis.adjacent;
     MergeCostModel &model = basis.model;
-    std::vector<int> parent(count);
-    for (int k = 0; k < count; ++k) parent[k] = k;
-    auto root = [&](int k) {
-        while (parent[k] != k) k = parent[k] = parent[parent[k]];
-        return k;
-    };
-    // A candidate is costed after `when` merges; it is stale once a side merged away or took
-    // another cluster in since (changed[side] > when): the merge that changed a side costed that
-    // side's pairs anew.
-    struct Candidate { double cost; int a, b, when; };
-    const auto later = [](const Candidate &x, const Candidate &y) {
-        return x.cost > y.cost || (x.cost == y.cost && (x.a > y.a || (x.a == y.a && x.b > y.b)));
-    };
-    std::vector<int> changed(count, 0);
-    const auto stale = [&](const Candidate &c) {
-        return root(c.a) != c.a || root(c.b) != c.b || changed[c.a] > c.when || changed[c.b] > c.when;
-    };
-    // The heap in one buffer, a quarter larger than the pairs: when full, stale entries are dropped
-    // (the order of the valid ones is a total order: the same merges) before it grows, so that the
-    // queue stays near the pairs' size (a doubling vector can hold 3 times as many at its peak).
-    std::vector<Candidate> heap = LinkedPairs<Candidate>(
-        model, adjacent, [](double cost, int a, int b) { return Candidate{cost, a, b, 0}; }, 0.25);
-    std::make_heap(heap.begin(), heap.end(), later);
-    const auto push = [&](const Candidate &c) {
-        if (heap.size() == heap.capacity() && !heap.empty()) {
-            heap.erase(std::remove_if(heap.begin(), heap.end(), stale), heap.end());
-            std::make_heap(heap.begin(), heap.end(), later);
-            if (heap.size() > heap.capacity() / 2) heap.reserve(heap.capacity() + heap.capacity() / 2);
-        }
-        heap.push_back(c);
-        std::push_heap(heap.begin(), heap.end(), later);
-    };
+    detail::MergeQueue queue(model, adjacent, count);
     if (!goOn(0.1)) return kRefinementCancelled;
     const int needed = count - target;
     int remaining = count, merges = 0, nextReport = 0;
-    while (remaining > target && !heap.empty()) {
+    while (remaining > target && !queue.heap.empty()) {
         if (merges >= nextReport) {
             if (!goOn(0.1 + 0.9 * merges / needed)) return kRefinementCancelled;
             nextReport = merges + 4096;
         }
-        std::pop_heap(heap.begin(), heap.end(), later);
-        const Candidate top = heap.back();
-        heap.pop_back();
-        if (stale(top)) continue;
-        // Merge the smaller adjacency list into the larger one.
-        int keep = top.a, gone = top.b;
-        if (adjacent[keep].size() < adjacent[gone].size()) std::swap(keep, gone);
-        parent[gone] = keep;
-        model.Merge(keep, gone);
-        changed[keep] = merges + 1;
-        std::vector<int> merged;
-        for (int x : adjacent[keep]) merged.push_back(root(x));
-        for (int x : adjacent[gone]) merged.push_back(root(x));
-        SortUnique(merged);
-        merged.erase(std::remove(merged.begin(), merged.end(), keep), merged.end());
-        adjacent[keep] = std::move(merged);
-        std::vector<int>().swap(adjacent[gone]);
-        for (int x : adjacent[keep]) {
-            const int a = std::min(keep, x), b = std::max(keep, x);
-            push({model.Cost(a, b), a, b, merges + 1});
-        }
+        const detail::MergeQueue::Candidate top = queue.Pop();
+        if (queue.Stale(top)) continue;
+        detail::MergeCandidate(top, merges, queue, adjacent, model);
         --remaining;
         ++merges;
     }
-    for (int &l : clusters.label)
-        if (l >= 0) l = root(l);
-    const IndexArray remap = clusters.Compact();
-    // A merged cluster's list holds the roots of its parts' links when it was last merged: their
-    // roots now, renumbered, are the links of its members.
-    std::vector<std::vector<int>> links(size_t(clusters.clusterCount));
-    for (int c = 0; c < count; ++c) {
-        if (remap[c] < 0) continue;
-        std::vector<int> &list = links[size_t(remap[c])];
-        for (int x : adjacent[size_t(c)]) {
-            const int linked = remap[root(x)];
-            if (linked >= 0 && linked != remap[c]) list.push_back(linked);
-        }
-        SortUnique(list);
-        list.shrink_to_fit();
-        std::vector<int>().swap(adjacent[size_t(c)]);
-    }
-    adjacent.swap(links);
+    detail::RelabelMerged(count, queue, adjacent, clusters);
     return merges;
 }
 
