@@ -17,8 +17,16 @@ class OrientedPointVertex
                          vcg::vertex::Qualityf, vcg::vertex::Color4b, vcg::vertex::BitFlags> {};
 class OrientedPointFace
     : public vcg::Face<OrientedPointTypes, vcg::face::VertexRef, vcg::face::Normal3f, vcg::face::BitFlags> {};
-class OrientedPointMesh
-    : public vcg::tri::TriMesh<std::vector<OrientedPointVertex>, std::vector<OrientedPointFace>> {};
+/// vcglib 2020.09's ~TriMesh() leaves the per-vertex attributes allocated (its ClearAttributes()
+/// call is commented out): this mesh frees them.
+class OrientedPointMesh : public vcg::tri::TriMesh<std::vector<OrientedPointVertex>, std::vector<OrientedPointFace>>
+{
+public:
+    OrientedPointMesh() = default;
+    OrientedPointMesh(const OrientedPointMesh &) = delete;
+    OrientedPointMesh &operator=(const OrientedPointMesh &) = delete;
+    ~OrientedPointMesh() { ClearAttributes(); }
+};
 
 } // namespace gaussphere
 } // namespace vcg
