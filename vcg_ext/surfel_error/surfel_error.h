@@ -319,6 +319,98 @@ SurfelSurface MakeSurfelSurface(const SimplifiedMesh& simplified, const SurfelEr
     return SurfelSurface(std::move(surfels), std::move(tree), params.neighborCount);
 }
 
+/// Bounding-box diagonal of the finite positions of S; `liveCount` counts its live vertices.
+/// \throws std::invalid_argument when S has no finite position, or one beyond kMaxCoordinate.
+template <class OriginalMesh>
+double OriginalDiagonal(const OriginalMesh& original, std::size_t& liveCount)
+{
+    Box3d box;
+    for (std::size_t i = 0; i < original.vert.size(); ++i) {
+        const auto& v = original.vert[i];
+        if (v.IsD())
+            continue;
+        ++liveCount;
+        const Point3d p = Point3d::Construct(v.cP());
+        if (!IsFinite(p))
+            continue;
+        CheckCoordinates(p, i, "original");
+        box.Add(p);
+    }
+    if (box.IsNull())
+        throw std::invalid_argument("surfel error: the original set has no point with a finite position");
+    return box.Diag();
+}
+
+/// Per vertex of S: its errors (NaN where undefined: deleted, skipped, or without a normal for
+/// the normal errors) and flags.
+struct PointErrors
+{
+    explicit PointErrors(std::size_t n)
+        : distance(n, std::numeric_limits<double>::quiet_NaN()),
+          ownNormalError(n, std::numeric_limits<double>::quiet_NaN()),
+          blendedNormalError(n, std::numeric_limits<double>::quiet_NaN()), unconverged(n, 0), ownFromNearest(n, 0)
+    {}
+    std::vector<double> distance, ownNormalError, blendedNormalError;
+    std::vector<char> unconverged, ownFromNearest;
+};
+
+/// Projects every live point of S with a finite position on `surface` (file header) and fills
+/// its entries of `e`; `cb` reports the progress, from the calling thread.
+template <class OriginalMesh>
+void ProjectOriginal(const OriginalMesh& original, const SurfelSurface& surface,
+                     const std::vector<int>& surfelOfVertex, const SurfelErrorAttributes& attributes,
+                     const SurfelErrorParams& params, double tolerance, vcg::CallBackPos* cb, PointErrors& e)
+{
+    const std::size_t n = original.vert.size();
+    // Blocks only pace the progress reports; each point is independent of the others.
+    const long blockSize = 8192;
+    for (long blockStart = 0; blockStart < long(n); blockStart += blockSize) {
+        if (cb)
+            cb(int(5 + 95 * double(blockStart) / double(n)), "Surfel error: projecting the original points");
+        const long blockEnd = std::min(long(n), blockStart + blockSize);
+#pragma omp parallel
+        {
+            SurfelSurface::Scratch scratch;
+#pragma omp for schedule(static)
+            for (long i = blockStart; i < blockEnd; ++i) {
+                const auto& v = original.vert[i];
+                const Point3d q = Point3d::Construct(v.cP());
+                if (v.IsD() || !IsFinite(q))
+                    continue;
+                const Point3d normal = UnitOrZero(Point3d::Construct(v.cN()));
+                const SurfelSurface::Projection projection =
+                    surface.Project(q, normal, params.maxIterations, tolerance, scratch);
+                e.distance[i] = (q - projection.foot).Norm();
+                e.unconverged[i] = !projection.converged;
+                if (normal == Point3d(0, 0, 0))
+                    continue;
+                const int named = attributes.representative ? (*attributes.representative)[i] : -1;
+                const int own = named >= 0 ? surfelOfVertex[named] : -1;
+                e.ownFromNearest[i] = own < 0;
+                e.ownNormalError[i] =
+                    (normal - surface[own >= 0 ? own : projection.nearestSurfel].normal).Norm();
+                e.blendedNormalError[i] = (normal - projection.normal).Norm();
+            }
+        }
+    }
+}
+
+/// The counts and summaries of `e` into `stats` (whose diagonal is set).
+inline void SummarizeErrors(const PointErrors& e, SurfelErrorStats& stats)
+{
+    stats.unconvergedCount = std::size_t(std::count(e.unconverged.begin(), e.unconverged.end(), 1));
+    stats.ownSurfelFromNearestCount =
+        std::size_t(std::count(e.ownFromNearest.begin(), e.ownFromNearest.end(), 1));
+    stats.distance = SummarizeDefined(e.distance);
+    stats.normalizedDistance = stats.distance;
+    const double scale = stats.diagonal > 0 ? 1.0 / stats.diagonal : std::numeric_limits<double>::quiet_NaN();
+    stats.normalizedDistance.rms *= scale;
+    stats.normalizedDistance.max *= scale;
+    stats.normalizedDistance.p999 *= scale;
+    stats.normalToOwnSurfel = SummarizeDefined(e.ownNormalError);
+    stats.normalToBlended = SummarizeDefined(e.blendedNormalError);
+}
+
 } // namespace surfel_error_detail
 
 
@@ -362,21 +454,7 @@ SurfelErrorStats ComputeSurfelError(const OriginalMesh& original, const Simplifi
     CheckAttributes(attributes, original.vert.size(), simplified.vert.size());
 
     SurfelErrorStats stats;
-    Box3d box;
-    for (std::size_t i = 0; i < original.vert.size(); ++i) {
-        const auto& v = original.vert[i];
-        if (v.IsD())
-            continue;
-        ++stats.originalPointCount;
-        const Point3d p = Point3d::Construct(v.cP());
-        if (!IsFinite(p))
-            continue;
-        CheckCoordinates(p, i, "original");
-        box.Add(p);
-    }
-    if (box.IsNull())
-        throw std::invalid_argument("surfel error: the original set has no point with a finite position");
-    stats.diagonal = box.Diag();
+    stats.diagonal = OriginalDiagonal(original, stats.originalPointCount);
 
     if (cb)
         cb(0, "Surfel error: preparing the surfels");
@@ -388,58 +466,13 @@ SurfelErrorStats ComputeSurfelError(const OriginalMesh& original, const Simplifi
             return s >= 0;
         }));
 
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::size_t n = original.vert.size();
-    std::vector<double> distance(n, nan), ownNormalError(n, nan), blendedNormalError(n, nan);
-    std::vector<char> unconverged(n, 0), ownFromNearest(n, 0);
+    PointErrors errors(original.vert.size());
     const double tolerance = params.convergenceTolerance * stats.diagonal;
-
-    // Blocks only pace the progress reports; each point is independent of the others.
-    const long blockSize = 8192;
-    for (long blockStart = 0; blockStart < long(n); blockStart += blockSize) {
-        if (cb)
-            cb(int(5 + 95 * double(blockStart) / double(n)), "Surfel error: projecting the original points");
-        const long blockEnd = std::min(long(n), blockStart + blockSize);
-#pragma omp parallel
-        {
-            SurfelSurface::Scratch scratch;
-#pragma omp for schedule(static)
-            for (long i = blockStart; i < blockEnd; ++i) {
-                const auto& v = original.vert[i];
-                const Point3d q = Point3d::Construct(v.cP());
-                if (v.IsD() || !IsFinite(q))
-                    continue;
-                const Point3d normal = UnitOrZero(Point3d::Construct(v.cN()));
-                const SurfelSurface::Projection projection =
-                    surface.Project(q, normal, params.maxIterations, tolerance, scratch);
-                distance[i] = (q - projection.foot).Norm();
-                unconverged[i] = !projection.converged;
-                if (normal == Point3d(0, 0, 0))
-                    continue;
-                const int named = attributes.representative ? (*attributes.representative)[i] : -1;
-                const int own = named >= 0 ? surfelOfVertex[named] : -1;
-                ownFromNearest[i] = own < 0;
-                ownNormalError[i] =
-                    (normal - surface[own >= 0 ? own : projection.nearestSurfel].normal).Norm();
-                blendedNormalError[i] = (normal - projection.normal).Norm();
-            }
-        }
-    }
-
-    stats.unconvergedCount = std::size_t(std::count(unconverged.begin(), unconverged.end(), 1));
-    stats.ownSurfelFromNearestCount =
-        std::size_t(std::count(ownFromNearest.begin(), ownFromNearest.end(), 1));
-    stats.distance = SummarizeDefined(distance);
-    stats.normalizedDistance = stats.distance;
-    const double scale = stats.diagonal > 0 ? 1.0 / stats.diagonal : nan;
-    stats.normalizedDistance.rms *= scale;
-    stats.normalizedDistance.max *= scale;
-    stats.normalizedDistance.p999 *= scale;
-    stats.normalToOwnSurfel = SummarizeDefined(ownNormalError);
-    stats.normalToBlended = SummarizeDefined(blendedNormalError);
+    ProjectOriginal(original, surface, surfelOfVertex, attributes, params, tolerance, cb, errors);
+    SummarizeErrors(errors, stats);
 
     if (perPointDistance)
-        perPointDistance->assign(distance.begin(), distance.end());
+        perPointDistance->assign(errors.distance.begin(), errors.distance.end());
     if (cb)
         cb(100, "Surfel error: done");
     return stats;

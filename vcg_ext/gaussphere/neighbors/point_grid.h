@@ -184,15 +184,7 @@ public:
         const int reportEvery = std::max(1, CellCount() / 100);
 #pragma omp parallel
         {
-            std::vector<int> idx(k + 1);
-            std::vector<float> d2(k + 1);
-            std::vector<std::uint64_t> nearest(k + 1);
-            std::vector<NearbyCell> shell[kMaxRing + 1];
-            Block block;
-            float lastKth = 0; // k-th squared distance of the last point answered
-            std::vector<int> localUnresolved;
-            std::vector<char> isCopy;     // per slot of a crowded cell: answered by AnswerCopies
-            std::vector<int> byPosition;  // AnswerCopies' scratch
+            CellScratch scratch(k);
 #pragma omp for schedule(dynamic, 64)
             for (int c = 0; c < CellCount(); ++c) {
                 if (cancelled.load(std::memory_order_relaxed)) continue;
@@ -201,107 +193,13 @@ public:
                 if (progress && omp_get_thread_num() == 0 && done % reportEvery == 0 &&
                     !progress(double(done) / CellCount()))
                     cancelled = true;
-                const Cell home = DecodeCell(cellKey_[c]);
-                for (int ring = 1; ring <= kMaxRing; ++ring) shell[ring].clear();
-                CollectShell(home, 1, shell[1]);
-                int gathered = 1; // rings whose cells are in `shell`
-                GatherBlock(shell[1], block);
-                // The k-th distance of the previous point of this cell bounds this one's
-                // (triangle inequality), so most candidates are dropped by one comparison.
-                float previousKth = -1;
-                Point3 previous;
-                const int first = cellStart_[c], size = cellStart_[c + 1] - first;
-                const bool copies = size > kCrowdedCell && k > 0 &&
-                                    AnswerCopies(&order_[first], size, k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0;
-                const bool denseClump = size > maxGridCell_ && k > 0; // the grid would scan it per point
-                for (int s = first; s < first + size; ++s) {
-                    if (copies && isCopy[s - first]) continue;
-                    const int i = order_[s];
-                    if (denseClump) {
-                        localUnresolved.push_back(i);
-                        continue;
-                    }
-                    const Point3 &q = points_[i];
-                    const float margin2 = Squared(Margin(i, home, 1));
-                    int found = 0;
-                    if (k > 0) {
-                        float bound = margin2;
-                        if (previousKth >= 0) {
-                            const float reach = std::sqrt(previousKth) + (q - previous).Norm();
-                            bound = std::min(bound, reach * reach * 1.0001f);
-                        }
-                        // A guess from the last point first (usually right), then the bounds
-                        // that cannot fail while the block holds k points near enough.
-                        const float guess = std::min(bound, lastKth * kGuessGrowth);
-                        MeasureBlock(block, q);
-                        if (guess < bound) found = SelectNearest(block, i, k, guess, nearest.data());
-                        if (found < k) found = SelectNearest(block, i, k, bound, nearest.data());
-                        if (found < k && bound < margin2) found = SelectNearest(block, i, k, margin2, nearest.data());
-                    }
-                    if (found < k) {
-                        int ring = 1;
-                        found = 0;
-                        for (;; ++ring) {
-                            if (ring > gathered) CollectShell(home, ring, shell[gathered = ring]);
-                            ScanShell(shell[ring], i, k, nearest.data(), found);
-                            if ((found == k && DistanceOfKey(nearest[k - 1]) < Squared(Margin(i, home, ring))) ||
-                                ring == kMaxRing)
-                                break;
-                        }
-                        if (found < k || DistanceOfKey(nearest[k - 1]) >= Squared(Margin(i, home, ring))) {
-                            localUnresolved.push_back(i); // an isolated point: answered below
-                            previousKth = -1;
-                            continue;
-                        }
-                    }
-                    UnpackKeys(nearest.data(), found, idx.data(), d2.data());
-                    previousKth = k > 0 ? d2[k - 1] : -1;
-                    lastKth = std::max(previousKth, 0.f);
-                    previous = q;
-                    sink(i, idx.data(), d2.data(), found);
-                }
+                AnswerCell(c, k, sink, scratch);
             }
 #pragma omp critical
-            unresolved.insert(unresolved.end(), localUnresolved.begin(), localUnresolved.end());
+            unresolved.insert(unresolved.end(), scratch.unresolved.begin(), scratch.unresolved.end());
         }
         if (cancelled) return false;
-        unresolved.insert(unresolved.end(), far_.begin(), far_.end());
-        if (unresolved.empty()) return true;
-        std::sort(unresolved.begin(), unresolved.end());
-        if (int(unresolved.size()) > k && k > 0) { // copies of a far point are far too: all in the list
-            std::vector<char> isCopy;
-            std::vector<int> byPosition, idx(k);
-            std::vector<float> d2(k);
-            if (AnswerCopies(unresolved.data(), int(unresolved.size()), k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0) {
-                size_t kept = 0;
-                for (size_t u = 0; u < unresolved.size(); ++u)
-                    if (!isCopy[u]) unresolved[kept++] = unresolved[u];
-                unresolved.resize(kept);
-            }
-        }
-        // A few dozen isolated points are cheaper to answer by a scan of every point than
-        // by building a tree over all of them (see kMaxScannedQueries).
-        const bool scanAll = unresolved.size() <= kMaxScannedQueries;
-        std::unique_ptr<FallbackTree> tree(scanAll ? nullptr : new FallbackTree(points_));
-#pragma omp parallel
-        {
-            std::vector<int> idx(k);
-            std::vector<float> d2(k);
-            std::vector<std::uint64_t> nearest(k + 1);
-#pragma omp for schedule(dynamic, 1)
-            for (int u = 0; u < int(unresolved.size()); ++u) {
-                const int i = unresolved[u];
-                int found = 0;
-                if (tree) {
-                    found = tree->KNearest(i, k, nearest.data());
-                } else {
-                    for (int j = 0; j < n; ++j)
-                        if (j != i) InsertNearest(DistanceIndexKey((points_[j] - points_[i]).SquaredNorm(), j), k, nearest.data(), found);
-                }
-                UnpackKeys(nearest.data(), found, idx.data(), d2.data());
-                sink(i, idx.data(), d2.data(), found);
-            }
-        }
+        AnswerUnresolved(unresolved, k, sink);
         return true;
     }
 
@@ -594,6 +492,150 @@ private:
         std::vector<float> nearD2;
         std::vector<int> nearId;
     };
+
+    /// One thread's buffers for the cells it answers (ForAllKNearest).
+    struct CellScratch
+    {
+        explicit CellScratch(int k) : idx(k + 1), d2(k + 1), nearest(k + 1) {}
+        std::vector<int> idx;
+        std::vector<float> d2;
+        std::vector<std::uint64_t> nearest;
+        std::vector<NearbyCell> shell[kMaxRing + 1];
+        Block block;
+        float lastKth = 0;           // k-th squared distance of the last point answered
+        std::vector<int> unresolved; // points left to AnswerUnresolved
+        std::vector<char> isCopy;    // per slot of a crowded cell: answered by AnswerCopies
+        std::vector<int> byPosition; // AnswerCopies' scratch
+    };
+
+    /// Calls sink for the points of cell c that the grid answers (their copies, then the others
+    /// through the block and, if need be, the rings around it); the rest go to t.unresolved.
+    template <class Sink>
+    void AnswerCell(int c, int k, Sink &sink, CellScratch &t) const
+    {
+        const Cell home = DecodeCell(cellKey_[c]);
+        for (int ring = 1; ring <= kMaxRing; ++ring) t.shell[ring].clear();
+        CollectShell(home, 1, t.shell[1]);
+        int gathered = 1; // rings whose cells are in `shell`
+        GatherBlock(t.shell[1], t.block);
+        // The k-th distance of the previous point of this cell bounds this one's
+        // (triangle inequality), so most candidates are dropped by one comparison.
+        float previousKth = -1;
+        Point3 previous;
+        const int first = cellStart_[c], size = cellStart_[c + 1] - first;
+        const bool copies = size > kCrowdedCell && k > 0 &&
+                            AnswerCopies(&order_[first], size, k, sink, t.isCopy, t.byPosition, t.idx.data(), t.d2.data()) > 0;
+        const bool denseClump = size > maxGridCell_ && k > 0; // the grid would scan it per point
+        for (int s = first; s < first + size; ++s) {
+            if (copies && t.isCopy[s - first]) continue;
+            const int i = order_[s];
+            if (denseClump) {
+                t.unresolved.push_back(i);
+                continue;
+            }
+            const Point3 &q = points_[i];
+            const float margin2 = Squared(Margin(i, home, 1));
+            int found = 0;
+            if (k > 0) found = SearchBlock(t.block, q, i, k, margin2, previousKth, previous, t.lastKth, t.nearest.data());
+            if (found < k && !SearchRings(home, i, k, t.shell, gathered, t.nearest.data(), found)) {
+                t.unresolved.push_back(i); // an isolated point: answered by AnswerUnresolved
+                previousKth = -1;
+                continue;
+            }
+            UnpackKeys(t.nearest.data(), found, t.idx.data(), t.d2.data());
+            previousKth = k > 0 ? t.d2[k - 1] : -1;
+            t.lastKth = std::max(previousKth, 0.f);
+            previous = q;
+            sink(i, t.idx.data(), t.d2.data(), found);
+        }
+    }
+
+    /// The k nearest of point i (at q) among the block's points, into `nearest`; returns how many
+    /// were found, k unless the block holds fewer than k within its margin (margin2, squared).
+    /// previousKth (negative: none) and `previous` are the last point of this cell answered,
+    /// lastKth the thread's last k-th squared distance.
+    static int SearchBlock(Block &block, const Point3 &q, int i, int k, float margin2, float previousKth,
+                           const Point3 &previous, float lastKth, std::uint64_t *nearest)
+    {
+        int found = 0;
+        float bound = margin2;
+        if (previousKth >= 0) {
+            const float reach = std::sqrt(previousKth) + (q - previous).Norm();
+            bound = std::min(bound, reach * reach * 1.0001f);
+        }
+        // A guess from the last point first (usually right), then the bounds
+        // that cannot fail while the block holds k points near enough.
+        const float guess = std::min(bound, lastKth * kGuessGrowth);
+        MeasureBlock(block, q);
+        if (guess < bound) found = SelectNearest(block, i, k, guess, nearest);
+        if (found < k) found = SelectNearest(block, i, k, bound, nearest);
+        if (found < k && bound < margin2) found = SelectNearest(block, i, k, margin2, nearest);
+        return found;
+    }
+
+    /// The k nearest of point i through the rings of cells around home, widened up to kMaxRing
+    /// (shell[ring] collected as needed, `gathered` the rings collected), into `nearest` and
+    /// `found`. Returns false when they are not known to be exact there (an isolated point).
+    bool SearchRings(const Cell &home, int i, int k, std::vector<NearbyCell> *shell, int &gathered,
+                     std::uint64_t *nearest, int &found) const
+    {
+        int ring = 1;
+        found = 0;
+        for (;; ++ring) {
+            if (ring > gathered) CollectShell(home, ring, shell[gathered = ring]);
+            ScanShell(shell[ring], i, k, nearest, found);
+            if ((found == k && DistanceOfKey(nearest[k - 1]) < Squared(Margin(i, home, ring))) ||
+                ring == kMaxRing)
+                break;
+        }
+        return !(found < k || DistanceOfKey(nearest[k - 1]) >= Squared(Margin(i, home, ring)));
+    }
+
+    /// Calls sink for the points the grid left (`unresolved`, any order) and those outside the
+    /// grid box: copies of one position first (AnswerCopies), the rest by a scan of every point
+    /// or the kd-tree.
+    template <class Sink>
+    void AnswerUnresolved(std::vector<int> &unresolved, int k, Sink &sink) const
+    {
+        const int n = int(points_.size());
+        unresolved.insert(unresolved.end(), far_.begin(), far_.end());
+        if (unresolved.empty()) return;
+        std::sort(unresolved.begin(), unresolved.end());
+        if (int(unresolved.size()) > k && k > 0) { // copies of a far point are far too: all in the list
+            std::vector<char> isCopy;
+            std::vector<int> byPosition, idx(k);
+            std::vector<float> d2(k);
+            if (AnswerCopies(unresolved.data(), int(unresolved.size()), k, sink, isCopy, byPosition, idx.data(), d2.data()) > 0) {
+                size_t kept = 0;
+                for (size_t u = 0; u < unresolved.size(); ++u)
+                    if (!isCopy[u]) unresolved[kept++] = unresolved[u];
+                unresolved.resize(kept);
+            }
+        }
+        // A few dozen isolated points are cheaper to answer by a scan of every point than
+        // by building a tree over all of them (see kMaxScannedQueries).
+        const bool scanAll = unresolved.size() <= kMaxScannedQueries;
+        std::unique_ptr<FallbackTree> tree(scanAll ? nullptr : new FallbackTree(points_));
+#pragma omp parallel
+        {
+            std::vector<int> idx(k);
+            std::vector<float> d2(k);
+            std::vector<std::uint64_t> nearest(k + 1);
+#pragma omp for schedule(dynamic, 1)
+            for (int u = 0; u < int(unresolved.size()); ++u) {
+                const int i = unresolved[u];
+                int found = 0;
+                if (tree) {
+                    found = tree->KNearest(i, k, nearest.data());
+                } else {
+                    for (int j = 0; j < n; ++j)
+                        if (j != i) InsertNearest(DistanceIndexKey((points_[j] - points_[i]).SquaredNorm(), j), k, nearest.data(), found);
+                }
+                UnpackKeys(nearest.data(), found, idx.data(), d2.data());
+                sink(i, idx.data(), d2.data(), found);
+            }
+        }
+    }
 
     void GatherBlock(const std::vector<NearbyCell> &cells, Block &block) const
     {

@@ -544,6 +544,136 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
     return 0;
 }
 
+/// ExchangeForMaxError's merge pairs: every linked pair of `clusters`, cheapest first, as many as
+/// the exchange can read (PairsReadAtMost), into `pairs`. The links read every neighbour slot of
+/// `graph` (or come from `clusterLinks`, taken over), the surfels and their fit only the first
+/// kOffsetNeighbors: `graph` is cut to those once the links are known, before the costs, the
+/// pairs and the exchange's own buffers exist. Returns false when goOn() stopped it.
+template <class GoOn>
+bool ListMergePairs(const PointArray &points, const PointArray &normals, NeighborGraph &graph, double weightWidth,
+                    const MaxErrorExchangeParams &param, const Clustering &clusters,
+                    std::vector<std::vector<int>> *clusterLinks, GoOn &goOn, CheapestFirst &pairs)
+{
+    const ClusterMembers members(clusters);
+    std::vector<std::vector<int>> links;
+    bool stopped = !goOn();
+    if (clusterLinks) links.swap(*clusterLinks);
+    else if (!stopped) links = ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
+    if (stopped || !goOn()) return false;
+    KeepFirstSlots(graph, kOffsetNeighbors);
+    const MergeCostModel model(points, normals, clusters, members, weightWidth);
+    if (!goOn()) return false;
+    std::vector<MergePair> linked = LinkedPairs(model, links);
+    const size_t readable = PairsReadAtMost(linked, clusters.clusterCount, param);
+    pairs = CheapestFirst(std::move(linked), readable);
+    return true;
+}
+
+/// What the rounds of ExchangeForMaxError read and change.
+struct ExchangeState
+{
+    const PointArray &points, &normals;
+    const MaxErrorExchangeParams &param;
+    const SurfelMaker &maker;
+    Clustering &clusters;
+    BlendedDistances &distances; ///< has measured current.fitted
+    CheapestFirst &pairs;
+    SurfelMaker::Set &current;   ///< the surfels of `clusters`
+    SurfelMaker::Set &trial;     ///< the set every trial fills
+    std::vector<char> &settled;  ///< clusters of kept exchanges: not merged again
+    MaxErrorExchangeResult &result;
+    int count;                   ///< clusters.clusterCount between trials
+    double rounding;             ///< a largest distance lower by less than this is the same
+    double invH2;                ///< 1 / weightWidth^2, for SplitMembers
+};
+
+/// The merges tried with the split of cluster c into firstHalf and secondHalf (ascending; the
+/// labels of `x.clusters` as before the split, `members` theirs): the cheapest pairs that touch
+/// neither c, a settled cluster nor a merge tried before, at most mergeCandidates; the second half
+/// takes the index of the cluster merged away. Keeps the first exchange that lowers the largest
+/// distance (clusters, distances, current and settled updated) and returns whether one was kept.
+template <class GoOn>
+bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std::vector<int> &firstHalf,
+               const std::vector<int> &secondHalf, GoOn &goOn)
+{
+    std::vector<char> excluded = x.settled;
+    excluded[c] = 1;
+    int merges = 0;
+    for (size_t p = 0; const MergePair *pair = x.pairs.At(p); ++p) {
+        if (merges >= x.param.mergeCandidates) break;
+        const int keep = pair->a, gone = pair->b;
+        if (excluded[keep] || excluded[gone]) continue;
+        ++merges;
+        std::vector<int> merged;
+        std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
+                   std::back_inserter(merged));
+        if (!goOn()) break;
+        ++x.result.trials;
+        LabelChange exchange(x.clusters);
+        for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchange.Set(*i, keep);
+        for (int i : secondHalf) exchange.Set(i, gone);
+        x.maker.Update(x.current, members, x.clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, x.trial);
+        BlendedDistances::Measure measure = x.distances.Try(x.current.fitted, x.trial.fitted);
+        if (measure.max < x.distances.Max() - x.rounding) {
+            exchange.Keep();
+            x.distances.Accept(std::move(measure));
+            std::swap(x.current, x.trial); // the old set's buffers serve the next trials
+            x.settled[c] = x.settled[keep] = x.settled[gone] = 1;
+            return true;
+        }
+        exchange.Undo();
+        excluded[keep] = excluded[gone] = 1;
+    }
+    return false;
+}
+
+/// The split of cluster c into firstHalf and secondHalf (ascending), tried alone, its second half
+/// as an extra cluster: if that does not lower the largest distance, a merge elsewhere is not
+/// tried (it seldom helps where the split did not); if it does, TryMerges. Trials change the
+/// labels in place and undo the change (no copy of them). Returns whether an exchange was kept.
+template <class GoOn>
+bool TrySplit(ExchangeState &x, const ClusterMembers &members, int c, const std::vector<int> &firstHalf,
+              const std::vector<int> &secondHalf, GoOn &goOn)
+{
+    if (!goOn()) return false;
+    ++x.result.trials;
+    LabelChange split(x.clusters);
+    for (int i : secondHalf) split.Set(i, x.count);
+    x.clusters.clusterCount = x.count + 1;
+    x.maker.Update(x.current, members, x.clusters, {c, x.count}, {firstHalf, secondHalf}, x.trial);
+    const bool splitHelps = x.distances.Try(x.current.fitted, x.trial.fitted).max < x.distances.Max() - x.rounding;
+    split.Undo();
+    if (!splitHelps) return false;
+    return TryMerges(x, members, c, firstHalf, secondHalf, goOn);
+}
+
+/// One round of ExchangeForMaxError: splits of the worst point's cluster first, then of those of
+/// the surfels blended at it, nearest first (at most splitCandidates), each tried with merges
+/// where it helps. Returns whether an exchange was kept.
+template <class GoOn>
+bool ExchangeRound(ExchangeState &x, GoOn &goOn)
+{
+    const ClusterMembers members(x.clusters);
+    std::vector<int> candidates{x.clusters.label[x.distances.Worst()]};
+    for (int c : x.distances.BlendedAt(x.distances.Worst(), x.current.fitted))
+        if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
+    bool kept = false;
+    int splitsTried = 0;
+    for (int c : candidates) {
+        if (kept || x.result.cancelled || splitsTried >= x.param.splitCandidates) break;
+        if (members.Size(c) < 2) continue;
+        std::vector<int> part(members.begin(c), members.end(c));
+        int *mid = SplitMembers(x.points, x.normals, part.data(), part.data() + part.size(), x.invH2);
+        if (!mid) continue;
+        ++splitsTried;
+        std::vector<int> firstHalf(part.data(), mid), secondHalf(mid, part.data() + part.size());
+        std::sort(firstHalf.begin(), firstHalf.end());
+        std::sort(secondHalf.begin(), secondHalf.end());
+        kept = TrySplit(x, members, c, firstHalf, secondHalf, goOn);
+    }
+    return kept;
+}
+
 } // namespace detail
 
 /// Exchanges clusters of `clusters` at a fixed count to lower the largest distance of a point
@@ -591,100 +721,26 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // cheapest pairs merge the same neighbourhood back, and the exchanges stall). The pairs
     // between the other clusters keep their links and costs, so they are listed once: every
     // linked pair, cheapest first (ties by index: deterministic).
-    // The links read every neighbour slot, the surfels and their fit only the first
-    // kOffsetNeighbors: the graph is cut to those once the links are known, before the costs,
-    // the pairs and the exchange's own buffers exist.
     CheapestFirst pairs;
-    {
-        const ClusterMembers members(clusters);
-        std::vector<std::vector<int>> links;
-        bool stopped = !goOn();
-        if (clusterLinks) links.swap(*clusterLinks);
-        else if (!stopped) links = ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
-        if (stopped || !goOn()) return result;
-        KeepFirstSlots(graph, kOffsetNeighbors);
-        const MergeCostModel model(points, normals, clusters, members, weightWidth);
-        if (!goOn()) return result;
-        std::vector<MergePair> linked = LinkedPairs(model, links);
-        const size_t readable = PairsReadAtMost(linked, count, param);
-        pairs = CheapestFirst(std::move(linked), readable);
-    }
+    if (!detail::ListMergePairs(points, normals, graph, weightWidth, param, clusters, clusterLinks, goOn, pairs))
+        return result;
     SurfelMaker::Set current = maker.Make(clusters, goOn); // unfitted if cancelled before the fit
     if (result.cancelled || !goOn() || !distances.Reset(current.fitted, goOn)) {
         surfels = std::move(current.fitted);
         return result;
     }
     result.maxBefore = distances.Max();
-    // A largest distance lower by less than this is the same: projections summed in another order
-    // (a trial's surface holds the surfels near the points it projects) differ in the last bits.
-    const double rounding = 1e-9 * diagonal;
-    const double invH2 = 1.0 / (weightWidth * weightWidth);
     std::vector<char> settled(count, 0);
     // One surfel set for every trial: its buffers (two surfels per cluster) are filled anew, not
     // allocated anew (fresh pages cost more than the copy on a virtual machine).
     SurfelMaker::Set trial;
+    // A largest distance lower by less than `rounding` is the same: projections summed in another
+    // order (a trial's surface holds the surfels near the points it projects) differ in the last bits.
+    detail::ExchangeState state{points,  normals, param,   maker,  clusters,          distances,
+                                pairs,   current, trial,   settled, result,           count,
+                                1e-9 * diagonal, 1.0 / (weightWidth * weightWidth)};
     for (; round < param.maxRounds && !pairs.Empty() && distances.Max() > 0 && !result.cancelled; ++round) {
-        const ClusterMembers members(clusters);
-        // The worst point's cluster first, then those of the surfels blended at it, nearest first.
-        std::vector<int> candidates{clusters.label[distances.Worst()]};
-        for (int c : distances.BlendedAt(distances.Worst(), current.fitted))
-            if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
-        bool kept = false;
-        int splitsTried = 0;
-        for (int c : candidates) {
-            if (kept || result.cancelled || splitsTried >= param.splitCandidates) break;
-            if (members.Size(c) < 2) continue;
-            std::vector<int> part(members.begin(c), members.end(c));
-            int *mid = SplitMembers(points, normals, part.data(), part.data() + part.size(), invH2);
-            if (!mid) continue;
-            ++splitsTried;
-            std::vector<int> firstHalf(part.data(), mid), secondHalf(mid, part.data() + part.size());
-            std::sort(firstHalf.begin(), firstHalf.end());
-            std::sort(secondHalf.begin(), secondHalf.end());
-            // The split alone, its second half as an extra cluster: if that does not lower the
-            // largest distance, a merge elsewhere is not tried (it seldom helps where the split
-            // did not). Trials change the labels in place and undo the change (no copy of them).
-            if (!goOn()) break;
-            ++result.trials;
-            LabelChange split(clusters);
-            for (int i : secondHalf) split.Set(i, count);
-            clusters.clusterCount = count + 1;
-            maker.Update(current, members, clusters, {c, count}, {firstHalf, secondHalf}, trial);
-            const bool splitHelps = distances.Try(current.fitted, trial.fitted).max < distances.Max() - rounding;
-            split.Undo();
-            if (!splitHelps) continue;
-            // With a merge: the second half takes the index of the cluster merged away.
-            std::vector<char> excluded = settled;
-            excluded[c] = 1;
-            int merges = 0;
-            for (size_t p = 0; const MergePair *pair = pairs.At(p); ++p) {
-                if (merges >= param.mergeCandidates) break;
-                const int keep = pair->a, gone = pair->b;
-                if (excluded[keep] || excluded[gone]) continue;
-                ++merges;
-                std::vector<int> merged;
-                std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
-                           std::back_inserter(merged));
-                if (!goOn()) break;
-                ++result.trials;
-                LabelChange exchange(clusters);
-                for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchange.Set(*i, keep);
-                for (int i : secondHalf) exchange.Set(i, gone);
-                maker.Update(current, members, clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, trial);
-                BlendedDistances::Measure measure = distances.Try(current.fitted, trial.fitted);
-                if (measure.max < distances.Max() - rounding) {
-                    exchange.Keep();
-                    distances.Accept(std::move(measure));
-                    std::swap(current, trial); // the old set's buffers serve the next trials
-                    settled[c] = settled[keep] = settled[gone] = 1;
-                    kept = true;
-                    break;
-                }
-                exchange.Undo();
-                excluded[keep] = excluded[gone] = 1;
-            }
-        }
-        if (!kept) break;
+        if (!detail::ExchangeRound(state, goOn)) break;
         ++result.exchanges;
     }
     if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn())
