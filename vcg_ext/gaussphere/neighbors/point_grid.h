@@ -521,7 +521,7 @@ private:
         // The k-th distance of the previous point of this cell bounds this one's
         // (triangle inequality), so most candidates are dropped by one comparison.
         float previousKth = -1;
-        Point3 previous;
+        Point3 previous(0, 0, 0); // read only once previousKth is set
         const int first = cellStart_[c], size = cellStart_[c + 1] - first;
         const bool copies = size > kCrowdedCell && k > 0 &&
                             AnswerCopies(&order_[first], size, k, sink, t.isCopy, t.byPosition, t.idx.data(), t.d2.data()) > 0;
