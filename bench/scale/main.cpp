@@ -168,7 +168,7 @@ int RunOnce(const Options &o)
     std::printf("shape=%s\n", gen.shape.c_str());
     out("points", n);
     out("threads", omp_get_max_threads());
-    out("threads_used", s.threadsUsed); // fewer while other programs keep CPUs busy (adaptThreads)
+    out("threads_used", s.threadsUsed); // the OpenMP thread count of the run
     out("generate_s", generateSeconds);
     out("neighbours_s", s.secondsNeighbors);
     out("propagation_s", s.secondsPropagation);

@@ -247,7 +247,7 @@ struct Row
     double ownPlaneMax = kNaN;      ///< ours only: see MaxOwnPlaneDistance
     double dstarAboveFraction = kNaN; ///< with maxError: fraction of input points with D* > maxError
     int reducedThreadRuns = 0;      ///< ours only: timed runs that took fewer threads than `threads`
-                                    ///< (other programs kept CPUs busy: ResamplingParams::adaptThreads)
+                                    ///< (the OpenMP runtime gave fewer)
 };
 
 const char *kCsvHeader =
