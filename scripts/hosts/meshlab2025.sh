@@ -20,7 +20,6 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 tarball="${MESHLAB2025_TARBALL:-$HOSTS_REPO/../shared/meshlab-2025.07-src.tar.xz}"
-[ -f "$tarball" ] || tarball=/work/shared/meshlab-2025.07-src.tar.xz
 dir="$(realpath -m "$HOSTS_REPO/.deps/meshlab-2025.07")"
 inside=/opt/meshlab-2025.07
 plugins=(io_base)
