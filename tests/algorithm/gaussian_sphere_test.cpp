@@ -5,7 +5,6 @@
 #include <cmath>
 #include <set>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
@@ -14,7 +13,6 @@
 
 namespace {
 
-using vcg::gaussphere::BasePolyhedron;
 using vcg::gaussphere::GaussianSphere;
 using gstest::P3;
 using gstest::PointArray;
@@ -60,24 +58,21 @@ bool HasCorner(const GaussianSphere &s, int id, const P3 &v, float tol)
     return (a - v).Norm() < tol || (b - v).Norm() < tol || (c - v).Norm() < tol;
 }
 
-std::string Name(BasePolyhedron b) { return b == BasePolyhedron::Octahedron ? "Octahedron" : "Icosahedron"; }
-
-class GaussianSphereLevels : public ::testing::TestWithParam<std::tuple<BasePolyhedron, int>>
+class GaussianSphereLevels : public ::testing::TestWithParam<int>
 {
 protected:
-    BasePolyhedron Base() const { return std::get<0>(GetParam()); }
-    int Level() const { return std::get<1>(GetParam()); }
+    int Level() const { return GetParam(); }
     int ExpectedTriangleCount() const
     {
-        // (n-1)^2 triangles per base face: 8 faces (octahedron) or 20 (icosahedron).
+        // (n-1)^2 triangles per face of the icosahedron.
         const int m = Level() - 1;
-        return (Base() == BasePolyhedron::Octahedron ? 8 : 20) * m * m;
+        return 20 * m * m;
     }
 };
 
 TEST_P(GaussianSphereLevels, TriangleCountIsBaseFacesTimesSquaredSegments)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     EXPECT_EQ(s.Level(), Level());
     EXPECT_EQ(s.TriangleIdCount(), ExpectedTriangleCount());
 }
@@ -86,7 +81,7 @@ TEST_P(GaussianSphereLevels, TriangleCountIsBaseFacesTimesSquaredSegments)
 // sphere exactly once: positive orientation and spherical areas summing to 4 pi.
 TEST_P(GaussianSphereLevels, TrianglesAreOrientedAndTileTheSphere)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     double area = 0;
     for (int id = 0; id < s.TriangleIdCount(); ++id) {
         P3 a, b, c;
@@ -105,7 +100,7 @@ TEST_P(GaussianSphereLevels, TrianglesAreOrientedAndTileTheSphere)
 // triangle, and every id is returned for some direction (so none is a phantom).
 TEST_P(GaussianSphereLevels, LookupReturnsContainingTriangleAndHitsEveryId)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     const int count = s.TriangleIdCount();
     std::vector<char> hit(count, 0);
     // 250k directions: about 24 per triangle at n = 24 (icosahedron), enough to land in
@@ -131,7 +126,7 @@ TEST_P(GaussianSphereLevels, LookupReturnsContainingTriangleAndHitsEveryId)
 // The lookup only depends on the direction: scaling by a power of two changes nothing.
 TEST_P(GaussianSphereLevels, LookupIgnoresLength)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     for (const P3 &d : gstest::FibonacciDirections(2000)) {
         EXPECT_EQ(s.TriangleOf(d), s.TriangleOf(d * 4.f));
         EXPECT_EQ(s.TriangleOf(d), s.TriangleOf(d * 0.125f));
@@ -142,7 +137,7 @@ TEST_P(GaussianSphereLevels, LookupIgnoresLength)
 // deterministic, in range, and return one of the triangles having it as a corner.
 TEST_P(GaussianSphereLevels, GridVerticesMapToAnAdjacentTriangle)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     for (int id = 0; id < s.TriangleIdCount(); ++id) {
         P3 v[3];
         s.TriangleVertices(id, v[0], v[1], v[2]);
@@ -162,7 +157,7 @@ TEST_P(GaussianSphereLevels, GridVerticesMapToAnAdjacentTriangle)
 // triangles sharing the edge: the returned triangle must contain them.
 TEST_P(GaussianSphereLevels, EdgeMidpointsMapToAnAdjacentTriangle)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     for (int id = 0; id < s.TriangleIdCount(); ++id) {
         P3 v[3];
         s.TriangleVertices(id, v[0], v[1], v[2]);
@@ -182,7 +177,7 @@ TEST_P(GaussianSphereLevels, EdgeMidpointsMapToAnAdjacentTriangle)
 // midpoints and base-face centres; each lands in a triangle touching it.
 TEST_P(GaussianSphereLevels, SpecialDirectionsMapToAdjacentTriangles)
 {
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     const float r2 = float(1 / std::sqrt(2.0)), r3 = float(1 / std::sqrt(3.0));
     const PointArray special = {
         {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
@@ -201,12 +196,12 @@ TEST_P(GaussianSphereLevels, SpecialDirectionsMapToAdjacentTriangles)
 // The batched lookup's AVX2 kernel returns TriangleOf's ids: on dense directions, on every grid
 // vertex, chord midpoint and triangle centre (where rounding decides between neighbours), on
 // their scaled and opposite copies and on the special directions; with a count that leaves a
-// partial group of eight. (The octahedron, or a CPU without AVX2, takes TriangleOf itself.)
+// partial group of eight. (A CPU without AVX2 takes TriangleOf itself.)
 TEST_P(GaussianSphereLevels, BatchedLookupEqualsTriangleOf)
 {
-    if (Base() != BasePolyhedron::Icosahedron || !GaussianSphere::Avx2Kernels())
+    if (!GaussianSphere::Avx2Kernels())
         GTEST_SKIP() << "no kernel to compare: the batched lookup is TriangleOf here";
-    const GaussianSphere s(Level(), Base());
+    const GaussianSphere s(Level());
     PointArray dirs = gstest::FibonacciDirections(20000);
     for (int id = 0; id < s.TriangleIdCount(); ++id) {
         P3 v[3];
@@ -232,26 +227,19 @@ TEST_P(GaussianSphereLevels, BatchedLookupEqualsTriangleOf)
     EXPECT_EQ(differ, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(BasesAndLevels, GaussianSphereLevels,
-                         ::testing::Combine(::testing::Values(BasePolyhedron::Octahedron,
-                                                              BasePolyhedron::Icosahedron),
-                                            ::testing::Values(2, 3, 8, 16, 24)),
-                         [](const ::testing::TestParamInfo<std::tuple<BasePolyhedron, int>> &info) {
-                             return Name(std::get<0>(info.param)) + "_n" + std::to_string(std::get<1>(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Levels, GaussianSphereLevels, ::testing::Values(2, 3, 8, 16, 24),
+                         [](const ::testing::TestParamInfo<int> &info) { return "n" + std::to_string(info.param); });
 
-// Known answers from CALIBRATION.md: the longest chord of the actual triangulations and
+// Known answers from CALIBRATION.md: the longest chord of the actual triangulation and
 // the paper's formula sqrt(7 pi^2 / (8 (n-1)^2)).
 TEST(GaussianSphereEdges, MaxEdgeLengthMatchesCalibration)
 {
-    struct Case { BasePolyhedron base; int level; double longest; };
-    const Case cases[] = {{BasePolyhedron::Octahedron, 8, 0.343}, {BasePolyhedron::Octahedron, 16, 0.162},
-                          {BasePolyhedron::Octahedron, 24, 0.106}, {BasePolyhedron::Icosahedron, 8, 0.188},
-                          {BasePolyhedron::Icosahedron, 16, 0.088}, {BasePolyhedron::Icosahedron, 24, 0.058}};
+    struct Case { int level; double longest; };
+    const Case cases[] = {{8, 0.188}, {16, 0.088}, {24, 0.058}};
     for (const Case &c : cases) {
-        const GaussianSphere s(c.level, c.base);
-        EXPECT_NEAR(s.MaxEdgeLength(), c.longest, 6e-4) << Name(c.base) << " n=" << c.level;
-        // The formula over-estimates the true longest edge (1.2x octahedron, 2.2x icosahedron).
+        const GaussianSphere s(c.level);
+        EXPECT_NEAR(s.MaxEdgeLength(), c.longest, 6e-4) << "n=" << c.level;
+        // The formula over-estimates the true longest edge (2.2x).
         EXPECT_GT(s.PaperMaxEdgeLength(), s.MaxEdgeLength());
     }
 }
@@ -263,24 +251,21 @@ TEST(GaussianSphereEdges, PaperFormulaKnownValues)
     EXPECT_NEAR(GaussianSphere::PaperMaxEdgeLength(24), 0.128, 6e-4);
     // Exact: 7 pi^2 / (8 * 49) at n = 8.
     EXPECT_NEAR(GaussianSphere::PaperMaxEdgeLength(8), std::sqrt(7 * gstest::kPi * gstest::kPi / 392.0), 1e-12);
-    // The member uses the sphere's own level, for both bases.
-    EXPECT_DOUBLE_EQ(GaussianSphere(16, BasePolyhedron::Icosahedron).PaperMaxEdgeLength(),
+    // The member uses the sphere's own level.
+    EXPECT_DOUBLE_EQ(GaussianSphere(16).PaperMaxEdgeLength(),
                      GaussianSphere::PaperMaxEdgeLength(16));
 }
 
 TEST(GaussianSphereEdges, RefinementShrinksEdges)
 {
-    for (BasePolyhedron b : {BasePolyhedron::Octahedron, BasePolyhedron::Icosahedron}) {
-        double previous = 3;
-        for (int n : {2, 4, 8, 16, 24, 32}) {
-            const double e = GaussianSphere(n, b).MaxEdgeLength();
-            EXPECT_LT(e, previous) << Name(b) << " n=" << n;
-            previous = e;
-        }
+    double previous = 3;
+    for (int n : {2, 4, 8, 16, 24, 32}) {
+        const double e = GaussianSphere(n).MaxEdgeLength();
+        EXPECT_LT(e, previous) << "n=" << n;
+        previous = e;
     }
-    // n = 2 keeps the base polyhedron: octahedron edge sqrt(2), icosahedron edge 1.0515.
-    EXPECT_NEAR(GaussianSphere(2, BasePolyhedron::Octahedron).MaxEdgeLength(), std::sqrt(2.0), 1e-5);
-    EXPECT_NEAR(GaussianSphere(2, BasePolyhedron::Icosahedron).MaxEdgeLength(), 1.0514622, 1e-5);
+    // n = 2 keeps the icosahedron: edge 1.0515.
+    EXPECT_NEAR(GaussianSphere(2).MaxEdgeLength(), 1.0514622, 1e-5);
 }
 
 } // namespace

@@ -51,14 +51,11 @@ Clustering Propagate(const PointArray &normals, const IndexArray &triangle, cons
     return c;
 }
 
-IndexPropagationParams Params(int depth, PropagationReference ref = PropagationReference::Seed,
-                              PropagationOrder order = PropagationOrder::DepthFirst)
+IndexPropagationParams Params(int depth)
 {
     IndexPropagationParams p;
     p.maxDepth = depth;
     p.inscribedRadius = GaussianSphere::PaperMaxEdgeLength(8) / (2 * std::sqrt(3.0));
-    p.reference = ref;
-    p.order = order;
     return p;
 }
 
@@ -71,13 +68,11 @@ TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
     const PointArray normals(n, P3(0, 0, 1));
     const IndexArray triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
-    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
-        EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(1, PropagationReference::Seed, order)).clusterCount, 100);
-        EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(6, PropagationReference::Seed, order)).clusterCount, 29);
-        const Clustering unlimited = Propagate(normals, triangle, g, Identity(n), Params(0, PropagationReference::Seed, order));
-        EXPECT_EQ(unlimited.clusterCount, 1);
-        for (int l : unlimited.label) EXPECT_EQ(l, 0);
-    }
+    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(1)).clusterCount, 100);
+    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(6)).clusterCount, 29);
+    const Clustering unlimited = Propagate(normals, triangle, g, Identity(n), Params(0));
+    EXPECT_EQ(unlimited.clusterCount, 1);
+    for (int l : unlimited.label) EXPECT_EQ(l, 0);
     // Depth 6: the runs are exactly 0..6, 7..13, ...
     const Clustering d6 = Propagate(normals, triangle, g, Identity(n), Params(6));
     for (int i = 0; i < n; ++i) EXPECT_EQ(d6.label[i], i / 7) << i;
@@ -110,17 +105,15 @@ TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
     ap.k = 8;
     const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
     const IndexArray triangle(s.Size(), 5);
-    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
-        const int c1 = Propagate(s.normals, triangle, g, tree.Order(), Params(1, PropagationReference::Seed, order)).clusterCount;
-        const int c6 = Propagate(s.normals, triangle, g, tree.Order(), Params(6, PropagationReference::Seed, order)).clusterCount;
-        const Clustering c0 = Propagate(s.normals, triangle, g, tree.Order(), Params(0, PropagationReference::Seed, order));
-        EXPECT_GT(c1, c6);
-        EXPECT_GT(c6, c0.clusterCount);
-        ASSERT_EQ(c0.clusterCount, 2);
-        for (int i = 0; i < s.Size(); ++i) EXPECT_EQ(c0.label[i], c0.label[i < first ? 0 : first]);
-        // Depth 1: a cluster is a seed and its (at most 8) direct neighbours.
-        EXPECT_GE(c1, 2 * first / 9);
-    }
+    const int c1 = Propagate(s.normals, triangle, g, tree.Order(), Params(1)).clusterCount;
+    const int c6 = Propagate(s.normals, triangle, g, tree.Order(), Params(6)).clusterCount;
+    const Clustering c0 = Propagate(s.normals, triangle, g, tree.Order(), Params(0));
+    EXPECT_GT(c1, c6);
+    EXPECT_GT(c6, c0.clusterCount);
+    ASSERT_EQ(c0.clusterCount, 2);
+    for (int i = 0; i < s.Size(); ++i) EXPECT_EQ(c0.label[i], c0.label[i < first ? 0 : first]);
+    // Depth 1: a cluster is a seed and its (at most 8) direct neighbours.
+    EXPECT_GE(c1, 2 * first / 9);
 }
 
 /// A bumpy height field z = 0.3 sin(x) cos(1.3 y) sampled on a 60 x 60 grid, with exact
@@ -250,50 +243,27 @@ TEST_F(IndexPropagationOnBumps, UnlimitedClustersAreMaximal)
     }
 }
 
-// With the current point as reference, each non-seed member is within the radius of a
-// member that has it as a neighbour (the one that passed the label on).
-TEST_F(IndexPropagationOnBumps, CurrentPointReferenceBoundsNormalsAlongEdges)
+// The depth-first traversal (the paper's stack) labels every point and respects the
+// invariants: triangle, connectivity, depth.
+TEST_F(IndexPropagationOnBumps, DepthLimitedLabellingCoversEveryPoint)
 {
     const BumpyGrid &d = Data();
-    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
-                                   Params(6, PropagationReference::CurrentPoint));
+    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
     const IndexArray seed = d.Seeds(c);
-    std::vector<char> reached(d.s.Size(), 0);
-    for (int i = 0; i < d.s.Size(); ++i)
-        for (const int *q = d.graph.begin(i); q != d.graph.end(i); ++q)
-            if (c.label[*q] == c.label[i] && (d.s.normals[*q] - d.s.normals[i]).SquaredNorm() <= Radius2())
-                reached[*q] = 1;
+    const IndexArray hops = d.HopsFromSeed(c);
+    const auto sizes = gstest::ClusterSizes(c.label);
+    EXPECT_EQ(int(sizes.size()), c.clusterCount) << "labels 0..count-1 are all used";
     for (int i = 0; i < d.s.Size(); ++i) {
         ASSERT_GE(c.label[i], 0);
+        ASSERT_LT(c.label[i], c.clusterCount);
         EXPECT_EQ(d.triangle[i], d.triangle[seed[c.label[i]]]);
-        if (seed[c.label[i]] != i) EXPECT_TRUE(reached[i]) << "point " << i;
-    }
-}
-
-// Depth-first (the paper's stack) and breadth-first traversals both label every point
-// and respect the same invariants (triangle, connectivity, depth).
-TEST_F(IndexPropagationOnBumps, DepthFirstAndBreadthFirstLabelEverything)
-{
-    const BumpyGrid &d = Data();
-    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
-        const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
-                                       Params(6, PropagationReference::Seed, order));
-        const IndexArray seed = d.Seeds(c);
-        const IndexArray hops = d.HopsFromSeed(c);
-        const auto sizes = gstest::ClusterSizes(c.label);
-        EXPECT_EQ(int(sizes.size()), c.clusterCount) << "labels 0..count-1 are all used";
-        for (int i = 0; i < d.s.Size(); ++i) {
-            ASSERT_GE(c.label[i], 0);
-            ASSERT_LT(c.label[i], c.clusterCount);
-            EXPECT_EQ(d.triangle[i], d.triangle[seed[c.label[i]]]);
-            EXPECT_GE(hops[i], 0);
-            EXPECT_LE(hops[i], 6);
-        }
+        EXPECT_GE(hops[i], 0);
+        EXPECT_LE(hops[i], 6);
     }
 }
 
 // The triangles are labelled in parallel: the labels do not depend on the thread count
-// (including excluded points and both orders), and they number the clusters in the order of
+// (including excluded points), and they number the clusters in the order of
 // their seeds in seedOrder, as the sequential algorithm does.
 TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSeedOrder)
 {
@@ -303,19 +273,15 @@ TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSee
     IndexArray positionOf(d.s.Size());
     for (int s = 0; s < d.s.Size(); ++s) positionOf[d.seedOrder[s]] = s;
     const int threadsBefore = omp_get_max_threads();
-    for (PropagationOrder order : {PropagationOrder::DepthFirst, PropagationOrder::BreadthFirst}) {
-        omp_set_num_threads(1);
-        const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
-                                         Params(6, PropagationReference::Seed, order), initial);
-        const IndexArray seed = d.Seeds(one);
-        for (int l = 1; l < one.clusterCount; ++l) EXPECT_LT(positionOf[seed[l - 1]], positionOf[seed[l]]);
-        for (int threads : {2, 3, 7}) {
-            omp_set_num_threads(threads);
-            const Clustering many = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder,
-                                              Params(6, PropagationReference::Seed, order), initial);
-            EXPECT_EQ(many.clusterCount, one.clusterCount) << threads << " threads";
-            EXPECT_EQ(many.label, one.label) << threads << " threads";
-        }
+    omp_set_num_threads(1);
+    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), initial);
+    const IndexArray seed = d.Seeds(one);
+    for (int l = 1; l < one.clusterCount; ++l) EXPECT_LT(positionOf[seed[l - 1]], positionOf[seed[l]]);
+    for (int threads : {2, 3, 7}) {
+        omp_set_num_threads(threads);
+        const Clustering many = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), initial);
+        EXPECT_EQ(many.clusterCount, one.clusterCount) << threads << " threads";
+        EXPECT_EQ(many.label, one.label) << threads << " threads";
     }
     omp_set_num_threads(threadsBefore);
 }

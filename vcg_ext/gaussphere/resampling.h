@@ -311,7 +311,7 @@ inline LevelClustering ClusterAtLevel(Run &run, int level)
     const int n = int(run.points.size());
     LevelClustering r;
     r.level = level;
-    const GaussianSphere sphere(level, BasePolyhedron::Icosahedron);
+    const GaussianSphere sphere(level);
     const double inscribedRadius = sphere.PaperMaxEdgeLength() / (2.0 * std::sqrt(3.0));
     RestrictToCone(run.points, run.normals, sphere.PaperMaxEdgeLength(), run.graph);
     long long kept = 0;

@@ -1,19 +1,19 @@
 // Subdivided Gaussian sphere: a regular triangulation of the unit sphere with O(1)
 // lookup of the triangle that contains a unit normal.
 //
-// Construction: every face of a base polyhedron inscribed in the unit sphere (octahedron
-// or icosahedron) is cut into (n-1)^2 triangles by n-1 segments per edge; the vertices
-// are projected onto the sphere along rays from the centre (gnomonic projection). A
-// normal is located by intersecting its ray with the face plane of its base face and
-// reading the barycentric grid cell there, so lookup costs one 3x3 product.
+// Construction: every face of the icosahedron inscribed in the unit sphere is cut into
+// (n-1)^2 triangles by n-1 segments per edge; the vertices are projected onto the sphere
+// along rays from the centre (gnomonic projection). The icosahedron has the most faces of
+// the regular polyhedra, so the projection distorts its triangles least. A normal is located
+// by intersecting its ray with the face plane of its base face and reading the barycentric
+// grid cell there, so lookup costs one 3x3 product.
 //
 // Level n and d_max. The paper gives d_max = sqrt(7*pi^2 / (8 (n-1)^2)) as "the maximal
 // length of a Gaussian edge" for level n and varies n = 8, 16, 24; the 1/(n-1) scaling
-// is n-1 segments per base edge, which is what this class builds. The formula is
-// larger than the true maximal chord of either triangulation (octahedron: 1.2x,
-// icosahedron: 2.2x; see MaxEdgeLength()). The resampler uses the formula's d_max for the
-// cone of normals and for the propagation radius, as the paper does, since that reading
-// reproduces the paper's neighbourhood sizes (6-16 of 16) and counts.
+// is n-1 segments per base edge, which is what this class builds. The formula is 2.2x
+// the true maximal chord of the triangulation (see MaxEdgeLength()). The resampler uses the
+// formula's d_max for the cone of normals and for the propagation radius, as the paper does,
+// since that reading reproduces the paper's neighbourhood sizes (6-16 of 16) and counts.
 #ifndef VCG_EXT_GAUSSPHERE_GAUSSIAN_SPHERE_H
 #define VCG_EXT_GAUSSPHERE_GAUSSIAN_SPHERE_H
 
@@ -33,22 +33,18 @@
 namespace vcg {
 namespace gaussphere {
 
-enum class BasePolyhedron { Octahedron, Icosahedron };
-
 class GaussianSphere
 {
 public:
     typedef vcg::Point3f Point3;
 
     /// level >= 2: the paper's n; each base edge is cut into level-1 segments.
-    GaussianSphere(int level, BasePolyhedron base = BasePolyhedron::Octahedron)
-        : level_(std::max(2, level)), segments_(level_ - 1), base_(base)
+    explicit GaussianSphere(int level) : level_(std::max(2, level)), segments_(level_ - 1)
     {
         BuildBaseFaces();
     }
 
     int Level() const { return level_; }
-    BasePolyhedron Base() const { return base_; }
     int BaseFaceCount() const { return int(faces_.size()); }
 
     /// Triangle ids lie in [0, TriangleIdCount()); every id denotes one triangle.
@@ -84,14 +80,14 @@ public:
     }
 
     /// triangles[i] = TriangleOf(normals[i]) for i in [0, count): the same ids, eight normals at a
-    /// time where the CPU has AVX2 and the base is the icosahedron (the same float and double
+    /// time where the CPU has AVX2 (the same float and double
     /// operations in the same order as TriangleOf, so the same triangles), at about a third of
     /// TriangleOf's time per normal.
     void TrianglesOf(const Point3 *normals, int count, int *triangles) const
     {
         int i = 0;
 #ifdef GAUSSPHERE_X86_DISPATCH
-        if (base_ == BasePolyhedron::Icosahedron && Avx2Kernels()) i = TrianglesOfAvx2(normals, count, triangles);
+        if (Avx2Kernels()) i = TrianglesOfAvx2(normals, count, triangles);
 #endif
         for (; i < count; ++i) triangles[i] = TriangleOf(normals[i]);
     }
@@ -157,9 +153,7 @@ private:
 
     int BaseFaceOf(const Point3 &n) const
     {
-        if (base_ == BasePolyhedron::Octahedron)
-            return (n[0] < 0 ? 1 : 0) | (n[1] < 0 ? 2 : 0) | (n[2] < 0 ? 4 : 0);
-        // Regular polyhedron: the containing face is the one whose centre is nearest, the
+        // The containing face is the one whose centre is nearest, the
         // first of equals. Four faces at a time where SSE2 is there (x86-64 always): the
         // same float products and sums as Point3::dot, so the same face.
 #if defined(__SSE2__)
@@ -199,7 +193,7 @@ private:
     }
 
 #ifdef GAUSSPHERE_X86_DISPATCH
-    /// TrianglesOf's kernel for the icosahedron, whole groups of eight; returns where it stopped.
+    /// TrianglesOf's kernel, whole groups of eight; returns where it stopped.
     /// The face: the largest dot product with the face centres, the first of equals (TriangleOf
     /// takes the same in four lanes, then the lowest face among equal lanes). The barycentric
     /// coordinates in double, four lanes at a time, from the face's row of `faceInverse_`.
@@ -281,24 +275,14 @@ private:
             for (int col = 0; col < 3; ++col) faceInverse_.push_back(f.inv[r][col]);
         const Point3 centre = (a + b + c).Normalize();
         const int id = int(faces_.size());
-        if (id < kIcosahedronFaces) {
-            centreX_[id] = centre[0];
-            centreY_[id] = centre[1];
-            centreZ_[id] = centre[2];
-        }
+        centreX_[id] = centre[0];
+        centreY_[id] = centre[1];
+        centreZ_[id] = centre[2];
         faces_.push_back(f);
     }
 
     void BuildBaseFaces()
     {
-        if (base_ == BasePolyhedron::Octahedron) {
-            // Face index = sign bits of (x, y, z), matching BaseFaceOf().
-            for (int f = 0; f < 8; ++f) {
-                const float sx = (f & 1) ? -1.f : 1.f, sy = (f & 2) ? -1.f : 1.f, sz = (f & 4) ? -1.f : 1.f;
-                AddFace(Point3(sx, 0, 0), Point3(0, sy, 0), Point3(0, 0, sz));
-            }
-            return;
-        }
         const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
         std::vector<Point3> v = {
             {-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
@@ -313,11 +297,10 @@ private:
 
     int level_;
     int segments_;
-    BasePolyhedron base_;
     static constexpr int kIcosahedronFaces = 20;
     std::vector<Face> faces_;
     std::vector<double> faceInverse_; // faces_[f].inv row by row at 9 f: TrianglesOfAvx2's gathers
-    float centreX_[kIcosahedronFaces] = {}, centreY_[kIcosahedronFaces] = {}, centreZ_[kIcosahedronFaces] = {}; // icosahedron only
+    float centreX_[kIcosahedronFaces] = {}, centreY_[kIcosahedronFaces] = {}, centreZ_[kIcosahedronFaces] = {};
 };
 
 } // namespace gaussphere

@@ -2,15 +2,14 @@
 //
 // A seed takes a new label; the label spreads along the adaptive neighbour graph to
 // unlabelled points whose normal lies in the seed's Gaussian triangle and within the
-// inscribed radius d_max / (2 sqrt 3) of the reference normal. The traversal uses an
-// explicit container (no recursion) and stops expanding at a depth limit, the paper's
-// positional constraint on large flat regions.
+// inscribed radius d_max / (2 sqrt 3) of the seed's normal. The traversal is depth first on
+// an explicit stack (the paper's Algorithm 1, without recursion) and stops expanding at a
+// depth limit, the paper's positional constraint on large flat regions.
 //
 // Reference normal. Algorithm 1 compares each candidate with the root (seed) while the
 // text compares neighbouring points. Comparing with the seed bounds every member's normal
 // to a disc of the inscribed radius around the seed's, which bounds the shape error; with
-// the current point, labels drift across the whole triangle. Seed is the default; the
-// other reading is kept as an option for comparison.
+// the current point, labels would drift across the whole triangle.
 #ifndef VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 #define VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 
@@ -33,15 +32,10 @@
 namespace vcg {
 namespace gaussphere {
 
-enum class PropagationReference { Seed, CurrentPoint };
-enum class PropagationOrder { DepthFirst, BreadthFirst };
-
 struct IndexPropagationParams
 {
     int maxDepth = 6;              ///< hops from the seed that may still expand; <= 0: no limit
     double inscribedRadius = 0.121;///< d_max / (2 sqrt 3), as a chord between unit normals
-    PropagationReference reference = PropagationReference::Seed;
-    PropagationOrder order = PropagationOrder::DepthFirst; ///< the paper uses a stack
 };
 
 namespace detail {
@@ -97,7 +91,7 @@ struct PropagationVisit { int point; int depth; };
 
 /// Spreads the label `position` from `seed` (already labelled) to the unlabelled points of its
 /// triangle `t` that pass the normal test, up to the depth limit. `pending` is working space:
-/// one vector serves both orders, a stack popped at the back or a queue read from `head`.
+/// the stack of points to visit.
 inline void GrowCluster(const PointArray &normals, const IndexArray &triangle, const NeighborGraph &graph,
                         const IndexPropagationParams &param, float maxChord2, int seed, int t, int position,
                         int *label, std::vector<PropagationVisit> &pending)
@@ -105,15 +99,13 @@ inline void GrowCluster(const PointArray &normals, const IndexArray &triangle, c
     const int unlabelled = kUnlabelled;
     const int othersLabel = -3; // read for a neighbour of another triangle instead of its label
     typedef PropagationVisit Visit;
+    const vcg::Point3f &ref = normals[seed];
     pending.clear();
-    size_t head = 0;
     pending.push_back({seed, 0});
-    while (head < pending.size()) {
-        Visit v;
-        if (param.order == PropagationOrder::DepthFirst) { v = pending.back(); pending.pop_back(); }
-        else v = pending[head++];
+    while (!pending.empty()) {
+        const Visit v = pending.back();
+        pending.pop_back();
         if (param.maxDepth > 0 && v.depth >= param.maxDepth) continue;
-        const vcg::Point3f &ref = normals[param.reference == PropagationReference::Seed ? seed : v.point];
         // Without branches: every neighbour is written past the end and the end moves
         // past it only if it joins (whether one does is unpredictable: a branch mispredicts).
         // The joined are labelled after the scan (neighbours are distinct: the same
