@@ -8,8 +8,8 @@ set(MESHLAB_SOURCE_DIR "${CMAKE_SOURCE_DIR}/.deps/meshlab-src" CACHE PATH
 set(MESHLAB_LIB_DIR "/usr/lib/x86_64-linux-gnu/meshlab" CACHE PATH
     "Folder holding the installed libmeshlab-common.so")
 set(MESHLAB_BIN_DIR "/usr/bin" CACHE PATH "Folder holding meshlab and meshlabserver")
-set(MESHLAB_PLUGIN_INSTALL_DIR "${MESHLAB_LIB_DIR}/plugins" CACHE PATH
-    "Where cmake --install puts the plugins (Debian's MeshLab loads them from there)")
+set(MESHLAB_PLUGIN_INSTALL_DIR "lib/x86_64-linux-gnu/meshlab/plugins" CACHE PATH
+    "Where cmake --install puts the plugins, under the prefix (/usr: Debian's MeshLab loads them there)")
 
 if(NOT EXISTS "${MESHLAB_SOURCE_DIR}/vcglib/vcg/complex/complex.h")
   message(FATAL_ERROR "MeshLab source tree not found in ${MESHLAB_SOURCE_DIR}: run scripts/setup.sh")

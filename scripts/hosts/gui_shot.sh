@@ -37,18 +37,11 @@ hosts_select "$version"
 
 run="/tmp/hosts-gui-$version-$$"        # inside the root
 host_run="$HOSTS_ROOT$run"
-mkdir -p "$host_run/home/.config/VCG" "$host_run/extra"
+mkdir -p "$host_run/extra"
 chmod 700 "$host_run"
 cp "$mesh" "$host_run/"
 for p in "${plugins[@]}"; do cp "$p" "$host_run/extra/"; done
-param() { printf 'MeshLab%%3A%%3ASystem%%3A%%3A%s="<Param name=\\"MeshLab::System::%s\\" type=\\"RichBool\\" value=\\"false\\"/>"\n' "$1" "$1"; }
-{
-  echo "[General]"
-  echo "informativeShown=true"
-  echo "dontRemindMeAboutUpgrade=true"
-  param sendAnonymousData
-  param checkForUpdate
-} > "$host_run/home/.config/VCG/MeshLab_64bit_fp.conf"
+hosts_quiet_settings "$host_run/home"
 
 # Stage: the plugin folder is found next to the executable (2025.07: <dir>/plugins) or, for an
 # executable in a folder named bin, in ../lib/x86_64-linux-gnu/meshlab/plugins (Debian's 2022.02).

@@ -12,6 +12,7 @@
 #                             it runs as a background job of the caller, so stop it before a bare `wait`
 #   hosts_xvfb_stop           stops it
 #   hosts_screenshot FILE     `import -window root` of DISPLAY, written to FILE on the host
+#   hosts_quiet_settings HOME MeshLab settings in HOME that pre-answer the start-up dialogs
 
 HOSTS_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 HOSTS_ROOT="${TRIXIE_ROOT:-$HOSTS_REPO/.deps/trixie-root}"
@@ -99,4 +100,19 @@ hosts_screenshot() {
   hosts_in_root import -window root "$tmp"
   mkdir -p "$(dirname "$1")"
   mv "$HOSTS_ROOT$tmp" "$1"
+}
+
+# MeshLab's QSettings file (~/.config/VCG/MeshLab_64bit_fp.conf) under HOME: informativeShown
+# (2025.07's usage-statistics question), dontRemindMeAboutUpgrade, and the global parameters
+# MeshLab::System::sendAnonymousData and checkForUpdate as false (docs/hosts.md).
+hosts_quiet_settings() {
+  local param='MeshLab%%3A%%3ASystem%%3A%%3A%s="<Param name=\\"MeshLab::System::%s\\" type=\\"RichBool\\" value=\\"false\\"/>"\n'
+  mkdir -p "$1/.config/VCG"
+  {
+    echo "[General]"
+    echo "informativeShown=true"
+    echo "dontRemindMeAboutUpgrade=true"
+    printf "$param" sendAnonymousData sendAnonymousData
+    printf "$param" checkForUpdate checkForUpdate
+  } > "$1/.config/VCG/MeshLab_64bit_fp.conf"
 }

@@ -6,7 +6,8 @@
 # It defines the imported target meshlab_host_common (what meshlab-common's PUBLIC usage
 # requirements are in src/common/CMakeLists.txt: MESHLAB_VERSION and MESHLAB_SCALAR, include
 # dir src/, vcglib, Qt5 Core/OpenGL/Widgets/Xml/Network, GLEW, Eigen) and
-#   meshlab_host_add_plugin(TARGET SOURCES...)   a MODULE library linking it, with AUTOMOC.
+#   meshlab_host_add_plugin(TARGET SOURCES...)   a MODULE library linking it, with AUTOMOC,
+#                                                installed into MESHLAB_PLUGIN_INSTALL_DIR.
 # MESHLAB_VERSION is ML_VERSION's text: the plugin loader refuses a plugin whose version
 # string differs from its own in the first 6 characters (src/common/plugins/plugin_manager.cpp,
 # checkPlugin), and one built with the other scalar (float unless the host was built with
@@ -44,8 +45,12 @@ set_target_properties(meshlab_host_common PROPERTIES
   INTERFACE_LINK_LIBRARIES "Qt5::Core;Qt5::Gui;Qt5::Widgets;Qt5::OpenGL;Qt5::Xml;Qt5::Network;GLEW::GLEW;OpenGL::GL;OpenGL::GLU;Eigen3::Eigen")
 message(STATUS "MeshLab host ${MESHLAB_HOST_VERSION} (${MESHLAB_SCALAR}): ${MESHLAB_COMMON_LIBRARY}")
 
+set(MESHLAB_PLUGIN_INSTALL_DIR "lib/x86_64-linux-gnu/meshlab/plugins" CACHE PATH
+    "where cmake --install puts the plugins, under the prefix (Debian's layout; MeshLab's own: lib/meshlab/plugins)")
+
 function(meshlab_host_add_plugin target)
   add_library(${target} MODULE ${ARGN})
+  install(TARGETS ${target} LIBRARY DESTINATION "${MESHLAB_PLUGIN_INSTALL_DIR}")
   set_target_properties(${target} PROPERTIES AUTOMOC ON)
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${target} PRIVATE meshlab_host_common)
