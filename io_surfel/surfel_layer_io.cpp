@@ -50,8 +50,9 @@ IoOutcome OpenLayer(const QString &fileName, MeshModel &m, int &mask, vcg::CallB
     if (!surfel_io::readSurfelFile(LocalPath(fileName), surfels, error)) return Failure("load", fileName, error);
 
     // The normal flag also keeps MeshLab from recomputing normals of this face-less layer.
+    // Positions and normals are always allocated: the optional components are the others.
     mask = ComponentMask();
-    m.Enable(mask);
+    m.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTRADIUS | MeshModel::MM_VERTQUALITY);
     surfel_io::addRecordsToMesh(surfels, m.cm);
     vcg::tri::UpdateBounding<CMeshO>::Box(m.cm);
     IoOutcome outcome;
