@@ -10,7 +10,7 @@
 //     SurfelBlendScale (presence and values, exactly);
 //  4. hostile files made from it (truncated, a NaN position, an infinite normal, not a PLY) and
 //     a layer with a NaN position to save: each must throw MLException whose text is one
-//     printable line with the reader's reason, and the save must leave no file;
+//     printable line with the reader's reason, the open must add no layer, the save no file;
 //  5. runs "Surfel Approximation Error" on the resampled layer, then on the reopened one, against
 //     MESH: both log the same figures.
 // Prints "check NAME: ok|FAIL ..." lines, the log and the layers; exit status 1 when a check fails.
@@ -165,10 +165,11 @@ void hostileFiles(const QString& good, const QDir& out, int surfels)
 	for (const auto& c : cases) {
 		const QString file = out.filePath(QString(c.name) + ".surfel");
 		writeBytes(file, c.bytes);
-		expectRefusal(std::string("hostile open ") + c.name, {"IOSurfel: cannot load '", c.reason}, [&] {
-			MeshDocument md;
-			meshlab::loadMeshWithStandardParameters(file, md);
-		});
+		MeshDocument md;
+		const std::string name = std::string("hostile open ") + c.name;
+		expectRefusal(name, {"IOSurfel: cannot load '", c.reason},
+					  [&] { meshlab::loadMeshWithStandardParameters(file, md); });
+		check(md.meshNumber() == 0, name + " adds no layer", std::to_string(md.meshNumber()) + " layer(s)");
 	}
 	const QString nanSave = out.filePath("nan_layer.surfel");
 	QFile::remove(nanSave);
