@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the project's plugins for MeshLab 2022.02 or 2025.07 (cmake/host_plugins: the
-# 2021.05+ adapters, vcg_ext against the host's vcglib, and the probes plugin_probe,
-# filter_run and io_run) in the trixie root, with the repository bind-mounted at /opt/gaussphere, then
-# lists what the plugins provide through the host's PluginManager (plugin_probe).
+# 2021.05+ adapters, vcg_ext against the host's vcglib, and the probes plugin_probe, filter_run
+# and io_run) in the trixie root, with the repository bind-mounted at /opt/gaussphere, then
+# lists what every plugin of the build folder provides through the host's PluginManager
+# (plugin_probe).
 #
 #   scripts/hosts/build_plugins.sh 2022.02|2025.07
 #
