@@ -18,14 +18,10 @@ version="${1:?usage: filter_e2e.sh 2022.02|2025.07}"
 
 source "$here/lib.sh"
 source "$here/host_env.sh"
-hosts_select "$version"
-build="$(realpath -m "$HOSTS_REPO/.deps/plugins-$version")"
-HOSTS_BINDS="$HOSTS_BINDS $HOSTS_REPO:/opt/gaussphere $build:/opt/gaussphere-build"
-export HOSTS_BINDS
-out="$build/filter_e2e.txt"
+hosts_plugins_select "$version"
+out="$PLUGINS_BUILD/filter_e2e.txt"
 status=0
-hosts_in_root env QT_QPA_PLATFORM=offscreen LD_LIBRARY_PATH="$(dirname "$HOST_COMMON")" \
-  /opt/gaussphere-build/filter_run /opt/gaussphere/sample_data/bunny.ply \
+hosts_in_root "${PLUGINS_PROBE_ENV[@]}" /opt/gaussphere-build/filter_run /opt/gaussphere/sample_data/bunny.ply \
   "Gaussian Sphere Feature-Sensitive Resampling" "$HOST_PLUGINS/libio_base.so" \
   /opt/gaussphere-build/libfilter_gaussphere.so >"$out" 2>&1 || status=$?
 cat "$out"

@@ -23,3 +23,16 @@ hosts_select() {
   esac
   export HOSTS_BINDS
 }
+
+# hosts_plugins_select VERSION: hosts_select VERSION for the project's plugins, and sets
+#   PLUGINS_BUILD      their build folder .deps/plugins-VERSION (/opt/gaussphere-build in the
+#                      root; the repository is bound at /opt/gaussphere)
+#   PLUGINS_PROBE_ENV  the env command the probes run under (offscreen Qt, the host's
+#                      libmeshlab-common.so on the library path: 2025.07's is in its build tree)
+hosts_plugins_select() {
+  hosts_select "$1" || return
+  PLUGINS_BUILD="$(realpath -m "$HOSTS_REPO/.deps/plugins-$1")"
+  HOSTS_BINDS="$HOSTS_BINDS $HOSTS_REPO:/opt/gaussphere $PLUGINS_BUILD:/opt/gaussphere-build"
+  export HOSTS_BINDS
+  PLUGINS_PROBE_ENV=(env QT_QPA_PLATFORM=offscreen LD_LIBRARY_PATH="$(dirname "$HOST_COMMON")")
+}

@@ -1,11 +1,10 @@
-// MeshLab IO plugin for `.surfel` files (docs/surfel_format.md): the resampled surfel
-// layers with their radius, quality, colour and ellipse attributes, which PLY loses.
+// MeshLab 2020.09 IO plugin (MeshIOInterface) for `.surfel` files (docs/surfel_format.md): the
+// resampled surfel layers with their radius, quality, colour and ellipse attributes, which PLY
+// loses. A thin adapter: what every host shares is in ../surfel_layer_io.h.
 #ifndef GAUSSPHERE_IO_SURFEL_IO_SURFEL_H
 #define GAUSSPHERE_IO_SURFEL_IO_SURFEL_H
 
 #include <common/interfaces.h>
-
-#include <string>
 
 class SurfelIOPlugin : public QObject, public MeshIOInterface
 {
@@ -27,9 +26,8 @@ public:
 	          QWidget* parent = nullptr) override;
 
 private:
-	// Reports `reason` (surfel_file's one-line reason) for `action` ("load", "save") on
-	// `fileName` and returns false.
-	bool fail(const char* action, const QString& fileName, const std::string& reason);
+	// Reports an outcome of ../surfel_layer_io.h: its error (returns false) or its note.
+	bool report(const QString& error, const QString& note);
 };
 
 #endif
