@@ -3,10 +3,17 @@
 # Sets up (Debian packages, MeshLab source), then runs every stage and prints one line each:
 #   release   builds everything (Release) and runs every test, including the end-to-end runs
 #             of meshlabserver and the GUI under Xvfb; CTEST ARGS go to this ctest
+#   hosts     the plugins in MeshLab 2022.02 (Debian 13, in a trixie root made once by
+#             scripts/hosts/trixie_root.sh): the filter, the .surfel round trip and the surfel error
+#             filter through MeshLab's own plugin loader, Ellipse Splatting in its GUI under Xvfb;
+#             the .deb packages for Debian 12 and 13 built, installed into clean roots, used and
+#             removed (scripts/package.sh, scripts/hosts/deb_test.sh); the same checks in
+#             MeshLab 2025.07 when its build is cached (scripts/hosts/meshlab2025.sh, 30-45 min
+#             once; HOSTS_2025=1 builds it here, HOSTS_2025=0 skips it)
 #   debug     compiles the algorithm tests, the error-metric tests and gsresample as Debug (-O0)
 #   sanitize  scripts/sanitize.sh: those tests and gsresample under ASan + UBSan
 #   fuzz      scripts/fuzz.sh: each fuzz target for $FUZZ_SECONDS seconds (default 60)
-# STAGES="release debug sanitize fuzz" (the default) picks stages. Every stage runs even when
+# STAGES="release hosts debug sanitize fuzz" (the default) picks stages. Every stage runs even when
 # one before it failed; the exit status is 0 only when all passed.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -28,6 +35,22 @@ stage_debug() {
     cmake --build "$debug" -j "$(nproc)" --target test_gaussphere_algorithm test_surfel_error gsresample
 }
 
+stage_hosts() {
+  local hosts="$here/scripts/hosts" versions=(2022.02)
+  "$hosts/trixie_root.sh" || return 1
+  case "${HOSTS_2025:-auto}" in
+    1) versions+=(2025.07) ;;
+    auto) if [ -f "$here/.deps/meshlab-2025.07/.hosts-build-complete" ]; then versions+=(2025.07)
+          else echo "[test] hosts: MeshLab 2025.07 is not built here: its checks are skipped (HOSTS_2025=1 builds it)"; fi ;;
+  esac
+  local version check
+  for version in "${versions[@]}"; do
+    for check in filter_e2e io_e2e render_e2e; do "$hosts/$check.sh" "$version" || return 1; done
+  done
+  BUILD_DIR="$build" bash "$here/scripts/package.sh" bookworm trixie &&
+    "$hosts/deb_test.sh" bookworm && "$hosts/deb_test.sh" trixie
+}
+
 stage_sanitize() { bash "$here/scripts/sanitize.sh"; }
 
 stage_fuzz() { bash "$here/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"; }
@@ -35,7 +58,7 @@ stage_fuzz() { bash "$here/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"; }
 bash "$here/scripts/setup.sh" || exit 1
 summary=()
 failed=0
-for stage in ${STAGES:-release debug sanitize fuzz}; do
+for stage in ${STAGES:-release hosts debug sanitize fuzz}; do
   start=$SECONDS
   if [ "$stage" = release ]; then stage_release "$@"; else "stage_$stage"; fi
   status=$?
