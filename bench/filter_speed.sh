@@ -6,7 +6,8 @@
 # (its log line "the whole filter took"), the algorithm alone, and CGAL's hierarchy at our count
 # (gsbench compare, in process, matched to ours' count), each the median over the rounds,
 # alternating.
-# Prints a markdown table with the ratios and the absolute times.
+# Prints a markdown table with the ratios and the absolute times, stamped with the commit, and
+# writes it to bench/results/filter_speed.md (docs/results.md quotes it).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(realpath "${1:-$here/build}")"
@@ -20,6 +21,7 @@ server="$build/stage/bin/meshlabserver"
 gsbench="$build/bench/gsbench"
 [ -x "$server" ] && [ -x "$gsbench" ] || { echo "build the stage and gsbench targets in $build first" >&2; exit 1; }
 median() { sort -g | awk '{v[NR]=$1} END {print (NR % 2) ? v[(NR+1)/2] : (v[NR/2] + v[NR/2+1]) / 2}'; }
+{
 echo "| model | surfels | whole filter (s) | around the algorithm (s, % of it) | CGAL hierarchy (s) | filter / hierarchy |"
 echo "|---|---|---|---|---|---|"
 for model in dragon igea; do
@@ -47,3 +49,4 @@ for model in dragon igea; do
 done
 echo
 echo "commit $(git -C "$here" rev-parse --short HEAD), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%F)"
+} | tee "$here/bench/results/filter_speed.md"

@@ -12,11 +12,12 @@ Sources, each section stamped with the run (commit, machine, date) its figures c
                                             scripts/bench.sh (level 8, speed target, figure 7)
   bench/results/raw/control_header.txt, raw/control_{targets,error_bound}.csv
                                             scripts/bench_control.sh (output size, error bound)
+  bench/results/filter_speed.md             bench/filter_speed.sh (the whole filter against CGAL)
   bench/render/results.md                   scripts/bench_render.sh (rendering quality)
   bench/scale/results.md, results.csv, results_target.csv
                                             scripts/bench_scale.sh (scale)
 bench/report.py calls this after writing bench/results/ (a full run of bench.sh or
-bench_control.sh); after bench_render.sh or bench_scale.sh run it by hand.
+bench_control.sh); after filter_speed.sh, bench_render.sh or bench_scale.sh run it by hand.
 """
 import argparse
 import difflib
@@ -322,6 +323,14 @@ def results_doc():
                   "*warm*: the heap as the previous rounds left it; *cold*: returned to the system before "
                   "every run, as for a first call in a process. Below 1×: ours is faster.",
                   report.speed_target(report.read_rows(warm), report.read_rows(cold))]
+
+    filter_md = os.path.join(RESULTS_DIR, "filter_speed.md")
+    if os.path.exists(filter_md):
+        parts += ["### The whole filter through meshlabserver against CGAL's hierarchy",
+                  "`bash bench/filter_speed.sh`: the filter's own figures for its whole run and for its glue "
+                  "around the algorithm (its log line), CGAL's hierarchy in process at our count; medians of 5 "
+                  "rounds, 2 threads, level 8. Below 1×: the whole filter is faster.",
+                  read(filter_md).strip()]
 
     render_md = path("bench", "render", "results.md")
     if os.path.exists(render_md):
