@@ -31,3 +31,5 @@ echo "[build_plugins] $version: configured and built in $((SECONDS - started)) s
 probe_env=(env QT_QPA_PLATFORM=offscreen LD_LIBRARY_PATH="$(dirname "$HOST_COMMON")")
 hosts_in_root "${probe_env[@]}" /opt/gaussphere-build/plugin_probe /opt/gaussphere-build/libfilter_gaussphere.so \
   | tee "$build/probe.txt"
+hosts_in_root "${probe_env[@]}" /opt/gaussphere-build/plugin_probe /opt/gaussphere-build/librender_ellipsesplat.so \
+  | tee -a "$build/probe.txt"
