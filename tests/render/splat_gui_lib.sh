@@ -5,8 +5,10 @@
 #                                     with "bare" the same points without normals
 #   splat_pixel_classes IMAGE CROP    "olive grey": pixel counts in the CROP (ImageMagick
 #                                     geometry WxH+X+Y, the 3D view) by colour class: MeshLab's
-#                                     default point colour is olive (red well above blue), the
-#                                     splats' default is grey, the background gradient is blue
+#                                     points are olive (2020.09) or yellow (2022.02, 2025.07):
+#                                     red and green well above blue; the splats' default is grey;
+#                                     neither are the background gradient (blue) and the
+#                                     trackball's red axis line (red above green and blue)
 
 splat_sphere_ply() {
   awk -v bare="${2:-}" 'BEGIN {
@@ -26,7 +28,7 @@ splat_sphere_ply() {
 
 splat_pixel_classes() {
   convert "$1" -crop "$2" -depth 8 txt:- | awk -F'[(),]' 'NR > 1 {
-    r = $3; b = $5;
-    if (r - b > 25) olive++; else if (b - r <= 25 && r > 30) grey++;
+    r = $3; g = $4; b = $5;
+    if (r - b > 25) { if (g - b > 25) olive++ } else if (b - r <= 25 && r > 30) grey++;
   } END { printf "%d %d\n", olive, grey }'
 }
