@@ -98,7 +98,11 @@ QString actionToolTip()
 
 SplatViews::SplatViews() = default;
 
-SplatViews::~SplatViews() = default;
+// The panel's signal calls into this object: the panel goes first.
+SplatViews::~SplatViews()
+{
+    delete panel.data();
+}
 
 LogTexts SplatViews::init(GLArea *view)
 {

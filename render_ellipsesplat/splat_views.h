@@ -6,6 +6,7 @@
 
 #include "ellipse_splat_renderer.h"
 
+#include <QPointer>
 #include <QString>
 
 #include <cstdint>
@@ -65,7 +66,7 @@ private:
 
     bool isSupported = false;
     std::map<GLArea *, ViewResources> views;
-    SplatSettingsPanel *panel = nullptr;
+    QPointer<SplatSettingsPanel> panel; // null once deleted, also by its parent window
     std::set<std::pair<int, QString>> loggedMessages; // (layer id, or -1 for the whole view; message) logged
 };
 
