@@ -2,7 +2,7 @@
 # Starts a MeshLab host's GUI in the trixie root under Xvfb with a mesh, takes a screenshot and
 # keeps its output: the check that the GUI starts, loads the mesh and (with --plugin) a plugin.
 #
-#   scripts/hosts/gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [--click X,Y]...
+#   scripts/hosts/gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [STEP]...
 #
 # VERSION 2022.02 or 2025.07. MESH (a host path) is copied into the root. The GUI runs from a
 # staged copy of the host (executable, libmeshlab-common.so, shaders, plugins/ = the host's
@@ -10,24 +10,28 @@
 # whose MeshLab settings pre-answer the start-up dialogs (QSettings ~/.config/VCG/MeshLab_64bit_fp.conf:
 # informativeShown (2025.07's usage-statistics question), dontRemindMeAboutUpgrade, and the
 # global parameters MeshLab::System::sendAnonymousData / checkForUpdate = false).
-# --click X,Y clicks there (xdotool) before the screenshot, e.g. to open a menu.
-# Writes OUT.png and OUT.log (the GUI's stdout and stderr). WAIT (default 12) seconds before
-# the clicks and the screenshot.
+# The STEPs run in the order given, WAIT (default 12) seconds after the start, before OUT.png:
+#   --click X,Y       clicks there (xdotool), e.g. to open a menu, then waits 2 s
+#   --hover X,Y       moves the pointer there, then waits 1 s (keeps a submenu open on the way)
+#   --xdotool ARGS    runs xdotool with ARGS (split at spaces), then waits 2 s
+#   --shot FILE.png   takes a screenshot to FILE.png (a host path)
+# Writes OUT.png and OUT.log (the GUI's stdout and stderr).
 set -euo pipefail
 here="$(dirname "${BASH_SOURCE[0]}")"
 source "$here/lib.sh"
 source "$here/host_env.sh"
 
-version="${1:?usage: gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [--click X,Y]...}"
+version="${1:?usage: gui_shot.sh VERSION OUT.png MESH [--plugin FILE]... [--exclude NAME]... [STEP]...}"
 out="$(realpath -m "${2:?OUT.png}")"
 mesh="$(realpath "${3:?MESH}")"
 shift 3
-plugins=() excludes=() clicks=()
+plugins=() excludes=() steps=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --plugin) plugins+=("$(realpath "$2")"); shift 2 ;;
     --exclude) excludes+=("$2"); shift 2 ;;
-    --click) clicks+=("$2"); shift 2 ;;
+    --click|--hover|--xdotool) steps+=("$1" "$2"); shift 2 ;;
+    --shot) steps+=("$1" "$(realpath -m "$2")"); shift 2 ;;
     *) echo "gui_shot.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -79,9 +83,15 @@ hosts_in_root env HOME="$run/home" XDG_RUNTIME_DIR="$run" LD_LIBRARY_PATH="$(dir
   > "${out%.png}.log" 2>&1 &
 gui_job=$!
 sleep "${WAIT:-12}"
-for c in "${clicks[@]}"; do
-  hosts_in_root xdotool mousemove "${c%,*}" "${c#*,}" click 1
-  sleep 2
+set -- "${steps[@]}"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --click) hosts_in_root xdotool mousemove "${2%,*}" "${2#*,}" click 1; sleep 2 ;;
+    --hover) hosts_in_root xdotool mousemove "${2%,*}" "${2#*,}"; sleep 1 ;;
+    --xdotool) read -r -a words <<< "$2"; hosts_in_root xdotool "${words[@]}" || true; sleep 2 ;;
+    --shot) hosts_screenshot "$2" ;;
+  esac
+  shift 2
 done
 hosts_screenshot "$out"
 alive=yes

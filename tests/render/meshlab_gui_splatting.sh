@@ -22,18 +22,8 @@ fi
 [ -x "$MESHLAB" ] || { echo "no staged MeshLab at $MESHLAB: build the 'stage' target"; exit 1; }
 mkdir -p "$OUT"
 
-# 1500 points on a unit sphere with outward normals: sparse enough for gaps between points.
-awk 'BEGIN {
-  n = 1500; golden = 3.14159265 * (3 - sqrt(5));
-  print "ply\nformat ascii 1.0\nelement vertex " n;
-  print "property float x\nproperty float y\nproperty float z";
-  print "property float nx\nproperty float ny\nproperty float nz\nend_header";
-  for (i = 0; i < n; i++) {
-    y = 1 - 2 * (i + 0.5) / n; r = sqrt(1 - y * y);
-    x = r * cos(golden * i); z = r * sin(golden * i);
-    printf "%f %f %f %f %f %f\n", x, y, z, x, y, z;
-  }
-}' > "$OUT/sphere.ply"
+source "$(dirname "$0")/splat_gui_lib.sh"
+splat_sphere_ply "$OUT/sphere.ply"
 
 # The same points as a .surfel file (docs/surfel_format.md, version 3): tangent ellipses of
 # semi-axes 0.1 and 0.08, every fit offset 0.5.
@@ -111,15 +101,8 @@ HOSTILE_RAN=$MESHLAB_RAN
 splat_screenshots "$OUT/sphere_far.ply" "$OUT/meshlab_far.log" "$OUT/far.png"
 FAR_RAN=$MESHLAB_RAN
 
-# Counts pixels of the 3D view (x 0-432, y 72-598, above the info box) by colour class:
-# MeshLab's default point colour is olive (red well above blue), the splats' default is grey,
-# the background gradient is blue.
-classify() {
-  convert "$1" -crop 433x527+0+72 -depth 8 txt:- | awk -F'[(),]' 'NR > 1 {
-    r = $3; b = $5;
-    if (r - b > 25) olive++; else if (b - r <= 25 && r > 30) grey++;
-  } END { printf "%d %d\n", olive, grey }'
-}
+# Pixels of the 3D view (x 0-432, y 72-598, above the info box) by colour class.
+classify() { splat_pixel_classes "$1" 433x527+0+72; }
 read -r OLIVE_BEFORE GREY_BEFORE < <(classify "$OUT/before.png")
 read -r OLIVE_AFTER GREY_AFTER < <(classify "$OUT/after.png")
 read -r OLIVE_FITTED GREY_FITTED < <(classify "$OUT/fitted.png")

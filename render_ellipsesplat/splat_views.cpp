@@ -1,4 +1,4 @@
-#include "render_ellipsesplat.h"
+#include "splat_views.h"
 
 #include "layer_surfels.h"
 #include "splat_settings_panel.h"
@@ -13,15 +13,17 @@
 #include <QProgressBar>
 #include <QStatusBar>
 
+namespace splat {
+
 namespace {
 
 // MeshLab's default colour for layers without per-vertex colour.
 const std::uint8_t kDefaultSplatColor[4] = {192, 192, 192, 255};
 
 // The splats are lit like MeshLab lights meshes: with its light 0 (a headlight by default).
-splat::Lighting lightingOfCurrentView()
+Lighting lightingOfCurrentView()
 {
-    splat::Lighting lighting;
+    Lighting lighting;
     float position[4], ambient[4], diffuse[4];
     glGetLightfv(GL_LIGHT0, GL_POSITION, position); // already in eye space
     glGetLightfv(GL_LIGHT0, GL_AMBIENT, ambient);
@@ -33,11 +35,11 @@ splat::Lighting lightingOfCurrentView()
     return lighting;
 }
 
-// MeshLab 2020.09's render interface has no progress callback, and the splat sizes of a raw
+// MeshLab's render interface has no progress callback, and the splat sizes of a raw
 // cloud of millions of points take seconds: their progress goes to the main window's status
 // bar (message and MeshLab's progress bar), repainted at once rather than through the event
 // loop, which must not run inside a paint. Returns an empty callback outside a main window.
-splat::ProgressCallback statusBarProgress(GLArea *view, const QString &what)
+ProgressCallback statusBarProgress(GLArea *view, const QString &what)
 {
     QMainWindow *window = qobject_cast<QMainWindow *>(view->window());
     if (window == nullptr)
@@ -62,67 +64,85 @@ splat::ProgressCallback statusBarProgress(GLArea *view, const QString &what)
     };
 }
 
-} // namespace
-
-EllipseSplatRenderPlugin::EllipseSplatRenderPlugin() : action(new QAction("Ellipse Splatting", this))
+// The document's layers: 2021.05 and later hand them out by meshIterator(), 2020.09 keeps
+// pointers in its public meshList.
+std::vector<MeshModel *> layersOf(MeshDocument &document)
 {
-    action->setToolTip("Perspective-correct elliptical splats blended in three passes (oriented point sets)");
+    std::vector<MeshModel *> layers;
+#if __has_include(<common/ml_document/mesh_document.h>)
+    for (MeshModel &layer : document.meshIterator())
+        layers.push_back(&layer);
+#else
+    for (MeshModel *layer : document.meshList)
+        layers.push_back(layer);
+#endif
+    return layers;
 }
 
-EllipseSplatRenderPlugin::~EllipseSplatRenderPlugin() = default;
+} // namespace
 
-QString EllipseSplatRenderPlugin::pluginName() const
+QString pluginName()
 {
     return "RenderEllipseSplat";
 }
 
-QList<QAction *> EllipseSplatRenderPlugin::actions()
+QString actionName()
 {
-    return {action};
+    return "Ellipse Splatting";
 }
 
-void EllipseSplatRenderPlugin::Init(QAction *, MeshDocument &document,
-                                    MLSceneGLSharedDataContext::PerMeshRenderingDataMap &, GLArea *view)
+QString actionToolTip()
 {
-    supported = false;
+    return "Perspective-correct elliptical splats blended in three passes (oriented point sets)";
+}
+
+SplatViews::SplatViews() = default;
+
+// The panel's signal calls into this object: the panel goes first.
+SplatViews::~SplatViews()
+{
+    delete panel.data();
+}
+
+LogTexts SplatViews::init(GLArea *view)
+{
+    isSupported = false;
     view->makeCurrent();
-    GLExtensionsManager::initializeGLextensions();
-    const std::string reason = splat::unsupportedReason();
-    if (!reason.empty()) {
-        document.Log.Log(GLLogStream::WARNING, reason);
-        return;
-    }
+    GLExtensionsManager::initializeGLextensions_notThrowing(); // a failure shows in unsupportedReason()
+    const std::string reason = unsupportedReason();
+    if (!reason.empty())
+        return {QString::fromStdString(reason)};
     ViewResources resources;
     try {
-        resources.renderer.reset(new splat::EllipseSplatRenderer);
+        resources.renderer.reset(new EllipseSplatRenderer);
     } catch (const std::exception &error) {
-        document.Log.Log(GLLogStream::WARNING, std::string("Ellipse Splatting: ") + error.what());
-        return;
+        return {QString("Ellipse Splatting: ") + error.what()};
     }
     views[view] = std::move(resources);
-    supported = true;
+    isSupported = true;
 
     if (panel == nullptr) {
         panel = new SplatSettingsPanel(view->window());
-        connect(panel, &SplatSettingsPanel::changed, this, [this] {
+        QObject::connect(panel, &SplatSettingsPanel::changed, panel, [this] {
             for (auto &entry : views)
                 entry.first->update();
         });
         panel->move(view->mapToGlobal(QPoint(10, 10)));
     }
     panel->show();
+    return {};
 }
 
-void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
-                                      MLSceneGLSharedDataContext::PerMeshRenderingDataMap &, GLArea *view)
+LogTexts SplatViews::render(MeshDocument &document, GLArea *view)
 {
+    LogTexts log;
     auto found = views.find(view);
     if (found == views.end() || view->mvc() == nullptr || panel == nullptr)
-        return;
+        return log;
     ViewResources &resources = found->second;
     MLSceneGLSharedDataContext *shared = view->mvc()->sharedDataContext();
     if (shared == nullptr)
-        return;
+        return log;
 
     Eigen::Matrix4f viewModelView, projection;
     glGetFloatv(GL_MODELVIEW_MATRIX, viewModelView.data());
@@ -130,29 +150,29 @@ void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
 
-    std::vector<splat::SplatDrawItem> items;
+    std::vector<SplatDrawItem> items;
     std::set<int> liveLayers;
-    for (MeshModel *layer : document.meshList) {
-        liveLayers.insert(layer->id());
-        if (!view->meshVisibilityMap[layer->id()])
+    for (MeshModel *layerPointer : layersOf(document)) {
+        const MeshModel &layer = *layerPointer;
+        liveLayers.insert(layer.id());
+        if (!view->meshVisibilityMap[layer.id()])
             continue;
-        const splat::SplatCloud *cloud = nullptr;
-        if (layer->cm.fn > 0)
-            logOnce(document, *layer, "is a triangle mesh: drawn as usual");
-        else if (layer->cm.vn > 0 && !splat::layerHasNormals(*layer))
-            logOnce(document, *layer,
-                    "has no normals: drawn as usual (Filters > Normals > Compute normals for point sets)");
-        else if (layer->cm.vn > 0)
-            cloud = cloudOf(resources, document, *layer, view);
+        const SplatCloud *cloud = nullptr;
+        if (layer.cm.fn > 0)
+            logOnce(layer, "is a triangle mesh: drawn as usual", log);
+        else if (layer.cm.vn > 0 && !layerHasNormals(layer))
+            logOnce(layer, "has no normals: drawn as usual (Filters > Normals > Compute normals for point sets)", log);
+        else if (layer.cm.vn > 0)
+            cloud = cloudOf(resources, layer, view, log);
         if (cloud == nullptr) {
-            shared->setMeshTransformationMatrix(layer->id(), layer->cm.Tr);
-            shared->draw(layer->id(), view->context());
+            shared->setMeshTransformationMatrix(layer.id(), layer.cm.Tr);
+            shared->draw(layer.id(), view->context());
             continue;
         }
         // vcg matrices are row-major; the layer's own transformation applies first.
         const Eigen::Matrix4f layerTransform = Eigen::Map<const Eigen::Matrix<float, 4, 4, Eigen::RowMajor>>(
-            layer->cm.Tr.V());
-        splat::SplatDrawItem item{cloud, {}};
+            layer.cm.Tr.V());
+        SplatDrawItem item{cloud, {}};
         Eigen::Map<Eigen::Matrix4f>(item.modelView) = viewModelView * layerTransform;
         items.push_back(item);
     }
@@ -164,11 +184,12 @@ void EllipseSplatRenderPlugin::Render(QAction *, MeshDocument &document,
                                    lightingOfCurrentView(), panel->settings());
     } catch (const std::exception &error) {
         if (loggedMessages.insert({-1, error.what()}).second) // not about one layer: once per MeshLab run
-            document.Log.Log(GLLogStream::WARNING, std::string("Ellipse Splatting failed: ") + error.what());
+            log.push_back(QString("Ellipse Splatting failed: ") + error.what());
     }
+    return log;
 }
 
-void EllipseSplatRenderPlugin::Finalize(QAction *, MeshDocument *, GLArea *view)
+void SplatViews::finalize(GLArea *view)
 {
     auto found = views.find(view);
     if (found != views.end()) {
@@ -183,35 +204,35 @@ void EllipseSplatRenderPlugin::Finalize(QAction *, MeshDocument *, GLArea *view)
     loggedMessages.clear();
 }
 
-const splat::SplatCloud *EllipseSplatRenderPlugin::cloudOf(ViewResources &resources, MeshDocument &document,
-                                                           const MeshModel &layer, GLArea *view)
+const SplatCloud *SplatViews::cloudOf(ViewResources &resources, const MeshModel &layer, GLArea *view, LogTexts &log)
 {
-    splat::LayerSplatOptions options;
+    LayerSplatOptions options;
     options.neighbours = panel->neighbours();
     options.atFittedPositions = panel->atFittedPositions();
-    const std::uint64_t fingerprint = splat::layerFingerprint(layer, options);
+    const std::uint64_t fingerprint = layerFingerprint(layer, options);
     CachedCloud &cached = resources.clouds[layer.id()];
     if (!cached.cloud || cached.fingerprint != fingerprint) {
         std::size_t skipped = 0;
         const QString what = QString("Ellipse Splatting: splat sizes of layer '%1'").arg(layer.label());
-        const splat::SurfelArrays surfels = splat::surfelsOfLayer(layer, options, skipped, statusBarProgress(view, what));
+        const SurfelArrays surfels = surfelsOfLayer(layer, options, skipped, statusBarProgress(view, what));
         view->makeCurrent(); // repainting the status bar may have made another GL context current
         if (skipped > 0)
-            logOnce(document, layer,
+            logOnce(layer,
                     QString("has %1 points that cannot be drawn (non-finite or beyond %2 coordinates, or zero normals): "
                             "skipped")
                         .arg(skipped)
-                        .arg(double(splat::kMaxCoordinate)));
-        cached.cloud.reset(new splat::SplatCloud(surfels, kDefaultSplatColor));
+                        .arg(double(kMaxCoordinate)),
+                    log);
+        cached.cloud.reset(new SplatCloud(surfels, kDefaultSplatColor));
         cached.fingerprint = fingerprint;
     }
     return cached.cloud.get();
 }
 
-void EllipseSplatRenderPlugin::logOnce(MeshDocument &document, const MeshModel &layer, const QString &message)
+void SplatViews::logOnce(const MeshModel &layer, const QString &message, LogTexts &log)
 {
     if (loggedMessages.insert({layer.id(), message}).second)
-        document.Log.Log(GLLogStream::WARNING, QString("Ellipse Splatting: layer '%1' %2").arg(layer.label(), message));
+        log.push_back(QString("Ellipse Splatting: layer '%1' %2").arg(layer.label(), message));
 }
 
-MESHLAB_PLUGIN_NAME_EXPORTER(EllipseSplatRenderPlugin)
+} // namespace splat
