@@ -4,9 +4,8 @@
 #
 #   scripts/hosts/deb_test.sh bookworm|trixie [PACKAGE.deb]   (default: the newest in out/packages)
 #
-# The clean root: Debian DIST with meshlab and what a headless check needs (xvfb xauth xdotool
-# imagemagick, and on trixie the libraries of MeshLab's own plugins that its package misses),
-# made once with mmdebstrap into .deps/clean-DIST.tar (~3 min) and unpacked afresh for every run.
+# The clean root: Debian DIST with meshlab and what a headless check needs (clean_root.sh),
+# unpacked afresh for every run.
 # Checks:
 #   1. dpkg -i succeeds: the package's dependencies, the exact meshlab version among them, are
 #      met by the distribution's packages;
@@ -26,23 +25,7 @@ deb="${2:-$(ls -t "$out"/meshlab-gaussphere_*~"$dist"_amd64.deb 2>/dev/null | he
 [ -f "$deb" ] || { echo "[deb_test] no package for $dist: run scripts/package.sh $dist" >&2; exit 1; }
 expected="${EXPECTED_SURFELS:-9618}"
 
-packages=(meshlab xvfb xauth xdotool imagemagick libgl1-mesa-dri)
-# trixie's meshlab misses the libraries of six of its own plugins (scripts/hosts/trixie_root.sh).
-[ "$dist" = trixie ] && packages+=(libmuparser2v5 libmpfr6 libqhull-r8.0 lib3ds-1-3 libopenctm1 libxerces-c3.2t64)
-tarball="$(realpath -m "$HOSTS_REPO/.deps/clean-$dist.tar")"
-stamp="$(printf '%s\n' "$dist" "${packages[@]}" | md5sum | cut -d' ' -f1)"
-exec 7>"$tarball.lock"
-flock 7
-if [ ! -f "$tarball" ] || [ "$(cat "$tarball.stamp" 2>/dev/null)" != "$stamp" ]; then
-  command -v mmdebstrap >/dev/null || DEBIAN_FRONTEND=noninteractive apt-get install -y mmdebstrap
-  started=$SECONDS
-  mmdebstrap --variant=apt --format=tar --include="$(IFS=,; echo "${packages[*]}")" "$dist" "$tarball.part" \
-    "deb $(hosts_debian_uri) $dist main" > "$tarball.log" 2>&1 || { cat "$tarball.log"; exit 1; }
-  mv "$tarball.part" "$tarball"
-  echo "$stamp" > "$tarball.stamp"
-  echo "[deb_test] made the clean $dist root in $((SECONDS - started)) s: $tarball"
-fi
-flock -u 7
+tarball="$("$here/clean_root.sh" "$dist")"
 
 HOSTS_ROOT="$(realpath -m "$HOSTS_REPO/.deps/deb-test-$dist-$$")"
 cleanup() { hosts_xvfb_stop; [ -n "${gui_job:-}" ] && kill "$gui_job" 2>/dev/null; rm -rf "$HOSTS_ROOT" "$HOSTS_ROOT".*; }
