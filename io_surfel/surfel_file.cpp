@@ -341,29 +341,6 @@ bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& s
   return fail(error, "cannot write " + quotedPath(path) + ": " + reason);
 }
 
-std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd) {
-  maxLength = std::max<std::size_t>(maxLength, 8);
-  const auto escaped = [](unsigned char c) {
-    if (c >= 0x20 && c <= 0x7e) return std::string(1, char(c));
-    char hex[5];
-    std::snprintf(hex, sizeof hex, "\\x%02x", c);
-    return std::string(hex);
-  };
-  std::size_t fullLength = 0;
-  for (std::size_t i = 0; i < text.size() && fullLength <= maxLength; ++i) fullLength += escaped(text[i]).size();
-  const bool cut = fullLength > maxLength;
-  const std::size_t budget = cut ? maxLength - 3 : maxLength;
-  // Whole escapes only, from the kept end inwards.
-  std::string result;
-  for (std::size_t n = 0; n < text.size(); ++n) {
-    const std::string piece = escaped(text[keepEnd ? text.size() - 1 - n : n]);
-    if (result.size() + piece.size() > budget) break;
-    result = keepEnd ? piece + result : result + piece;
-  }
-  if (cut) result = keepEnd ? "..." + result : result + "...";
-  return result;
-}
-
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {
   return std::any_of(surfels.begin(), surfels.end(), [](const SurfelRecord& s) { return s.blendScale != 1; });
 }

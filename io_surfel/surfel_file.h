@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "printable_text.h"
+
 namespace surfel_io {
 
 using Vec3f = std::array<float, 3>;
@@ -63,12 +65,6 @@ bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels,
 bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error);
-
-// `text` as printable ASCII of at most `maxLength` characters (at least 8): bytes outside
-// 0x20-0x7e become \xNN; a longer result is cut between whole escapes, its cut end marked
-// with "...": the end of the text is kept when `keepEnd` (for paths), its start otherwise.
-// Printable text within the length comes back unchanged.
-std::string printableText(const std::string& text, std::size_t maxLength, bool keepEnd = false);
 
 // True when some surfel has a non-zero axis. A file without any is one written from a layer
 // without ellipse frames, and loads without the ellipse attributes.

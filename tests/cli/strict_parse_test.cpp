@@ -9,7 +9,7 @@
 using gsresample::ParseChoice;
 using gsresample::ParseDouble;
 using gsresample::ParseInt;
-using gsresample::Printable;
+using gsresample::Quoted;
 
 namespace {
 
@@ -106,9 +106,9 @@ TEST(StrictParse, ChoiceMustMatchExactly)
 
 TEST(StrictParse, MessagesQuoteBoundedPrintableText)
 {
-    EXPECT_EQ(Printable("abc"), "abc");
-    EXPECT_EQ(Printable(std::string("a\0\n\x7f\xff", 5)), "a\\x00\\x0A\\x7F\\xFF");
-    EXPECT_EQ(Printable(std::string(100, 'x'), 10), std::string(10, 'x') + "...");
+    EXPECT_EQ(Quoted("abc"), "'abc'");
+    EXPECT_EQ(Quoted(std::string("a\0\n\x7f\xff", 5)), "'a\\x00\\x0a\\x7f\\xff'");
+    EXPECT_EQ(Quoted(std::string(100, 'x')), "'" + std::string(40, 'x') + "...'");
 
     int value = 0;
     std::string error;

@@ -17,6 +17,7 @@
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <vcg_ext/gaussphere/resampling.h>
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
+#include <io_surfel/printable_text.h>
 #include <io_surfel/surfel_records_mesh.h>
 
 #include <wrap/io_trimesh/export_ply.h>
@@ -28,17 +29,19 @@ using namespace vcg::gaussphere;
 
 namespace {
 
-constexpr std::size_t kMaxPathChars = 100;
-constexpr std::size_t kMaxMessageChars = 300;
+// Lengths in messages (surfel_io::printableText): 100 characters of a path, 300 of a message,
+// each with the "..." of a cut.
+constexpr std::size_t kMaxPathChars = 103;
+constexpr std::size_t kMaxMessageChars = 303;
 const int kIntMax = std::numeric_limits<int>::max();
 
 int Fail(int status, const std::string &message)
 {
-    std::fprintf(stderr, "gsresample: error: %s\n", gsresample::Printable(message, kMaxMessageChars).c_str());
+    std::fprintf(stderr, "gsresample: error: %s\n", surfel_io::printableText(message, kMaxMessageChars).c_str());
     return status;
 }
 
-std::string PathText(const std::string &path) { return gsresample::Printable(path, kMaxPathChars); }
+std::string PathText(const std::string &path) { return surfel_io::printableText(path, kMaxPathChars); }
 
 /// Usage and the options, from the parameter table (resampling_params.h).
 std::string Usage()
@@ -78,7 +81,7 @@ bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingPa
         return false;
     }
     if (!spec.Accepts(number)) {
-        error = "expected a value " + spec.RangeText() + ", got '" + gsresample::Printable(value) + "'";
+        error = "expected a value " + spec.RangeText() + ", got " + gsresample::Quoted(value);
         return false;
     }
     spec.set(param, number);
@@ -111,7 +114,7 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
         for (const ParameterSpec &spec : ParameterTable())
             if (spec.option != nullptr && arg == spec.option) option = &spec;
         if (!option) {
-            error = "unknown option '" + gsresample::Printable(arg) + "' (see --help)";
+            error = "unknown option " + gsresample::Quoted(arg) + " (see --help)";
             return false;
         }
         if (a + 1 >= argc) {
@@ -132,7 +135,7 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
     }
     if (paths.size() != 2) {
         error = paths.size() < 2 ? "expected INPUT.ply and OUTPUT.ply|OUTPUT.surfel (see --help)"
-                                 : "unexpected argument '" + gsresample::Printable(paths[2]) + "': expected only INPUT and OUTPUT";
+                                 : "unexpected argument " + gsresample::Quoted(paths[2]) + ": expected only INPUT and OUTPUT";
         return false;
     }
     line.input = paths[0];

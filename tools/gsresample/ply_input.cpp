@@ -13,7 +13,7 @@
 
 #include <wrap/io_trimesh/import_ply.h>
 
-#include "strict_parse.h"
+#include <io_surfel/printable_text.h>
 
 namespace gsresample {
 namespace {
@@ -23,8 +23,8 @@ constexpr std::size_t kMaxHeaderBytes = 65536;
 // line for a line of its own.
 constexpr std::size_t kMaxHeaderLineBytes = 500;
 constexpr std::size_t kMaxErrorChars = 200;
-// Quoted header text in messages.
-constexpr std::size_t kQuoteChars = 32;
+// Quoted header text in messages: 32 characters of it and the "..." of a cut.
+constexpr std::size_t kQuoteChars = 35;
 
 struct HeaderProperty
 {
@@ -55,7 +55,7 @@ struct PlyHeader
     std::uint64_t bodyOffset = 0;
 };
 
-std::string Quote(const std::string &text) { return "'" + Printable(text, kQuoteChars) + "'"; }
+std::string Quote(const std::string &text) { return "'" + surfel_io::printableText(text, kQuoteChars) + "'"; }
 
 /// Bytes of one value of a PLY scalar type (both spellings), 0 for an unknown name.
 int TypeSize(const std::string &type)
@@ -144,10 +144,12 @@ bool ParseProperty(const std::vector<std::string> &tokens, HeaderProperty &prope
     return true;
 }
 
-/// Reads the header from the first kMaxHeaderBytes of the file, line by line as vcglib will.
-bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std::string &error)
+/// Reads the first kMaxHeaderBytes of the file into `text` and checks its first line, "ply";
+/// `magicBytes` receives that line's length with its line end.
+bool ReadHeaderBytes(std::istream &in, std::uint64_t fileSize, std::string &text, std::size_t &magicBytes,
+                     std::string &error)
 {
-    std::string text(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
+    text.assign(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
     if (!in.read(&text[0], std::streamsize(text.size()))) {
         error = "cannot read the header";
         return false;
@@ -156,96 +158,139 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
         error = "the file is empty";
         return false;
     }
-    const std::size_t magicBytes = text.compare(0, 4, "ply\n") == 0 ? 4 : text.compare(0, 5, "ply\r\n") == 0 ? 5 : 0;
+    magicBytes = text.compare(0, 4, "ply\n") == 0 ? 4 : text.compare(0, 5, "ply\r\n") == 0 ? 5 : 0;
     if (magicBytes == 0) {
         error = "not a PLY file: it starts with " + Quote(text.substr(0, text.find('\n')));
         return false;
     }
+    return true;
+}
+
+/// The header line of `text` at `start`, without its line end, as vcglib will read it: at most
+/// kMaxHeaderLineBytes, printable ASCII or tabs; `start` moves to the next line. `where` names
+/// the line in errors.
+bool NextHeaderLine(const std::string &text, std::uint64_t fileSize, const std::string &where, std::size_t &start,
+                    std::string &line, std::string &error)
+{
+    const std::size_t newline = text.find('\n', start);
+    const std::size_t end = newline == std::string::npos ? text.size() : newline;
+    if (end - start > kMaxHeaderLineBytes) {
+        error = where + "longer than " + std::to_string(kMaxHeaderLineBytes) + " bytes";
+        return false;
+    }
+    if (newline == std::string::npos) {
+        if (text.size() < fileSize) error = "no end_header within the first " + std::to_string(kMaxHeaderBytes) + " bytes";
+        else error = "the file ends before end_header";
+        return false;
+    }
+    line = text.substr(start, end - start);
+    start = newline + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    for (char c : line) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u != '\t' && (u < 0x20 || u >= 0x7f)) {
+            error = where + "holds a non-printable byte: " + Quote(line);
+            return false;
+        }
+    }
+    return true;
+}
+
+/// The `format` line, which must come first (comments aside).
+bool ParseFormat(const std::vector<std::string> &tokens, const std::string &line, PlyHeader &header,
+                 std::string &error)
+{
+    if (tokens[0] != "format" || tokens.size() != 3 || tokens[2] != "1.0") {
+        error = "expected 'format ascii|binary_little_endian|binary_big_endian 1.0', got " + Quote(line);
+        return false;
+    }
+    if (tokens[1] == "ascii") header.binary = false;
+    else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") header.binary = true;
+    else {
+        error = "unknown format " + Quote(tokens[1]);
+        return false;
+    }
+    return true;
+}
+
+bool AddElement(const std::vector<std::string> &tokens, const std::string &line, PlyHeader &header,
+                std::string &error)
+{
+    if (tokens.size() != 3) {
+        error = "expected 'element NAME COUNT', got " + Quote(line);
+        return false;
+    }
+    for (const HeaderElement &e : header.elements) {
+        if (e.name == tokens[1]) {
+            error = "a second element " + Quote(tokens[1]);
+            return false;
+        }
+    }
+    HeaderElement element;
+    element.name = tokens[1];
+    if (!ParseCount(element.name, tokens[2], element.count, error)) return false;
+    header.elements.push_back(element);
+    return true;
+}
+
+/// A property of the last element declared.
+bool AddProperty(const std::vector<std::string> &tokens, PlyHeader &header, std::string &error)
+{
+    if (header.elements.empty()) {
+        error = "a property before any element";
+        return false;
+    }
+    HeaderProperty property;
+    if (!ParseProperty(tokens, property, error)) return false;
+    HeaderElement &element = header.elements.back();
+    if (element.Find(property.name)) {
+        error = "a second property " + Quote(property.name) + " in element " + Quote(element.name);
+        return false;
+    }
+    element.properties.push_back(property);
+    return true;
+}
+
+/// A header line after the format line, but end_header: obj_info, element or property.
+bool ParseDeclaration(const std::vector<std::string> &tokens, const std::string &line, PlyHeader &header,
+                      std::string &error)
+{
+    const std::string &keyword = tokens[0];
+    if (keyword == "obj_info") return true;
+    if (keyword == "element") return AddElement(tokens, line, header, error);
+    if (keyword == "property") return AddProperty(tokens, header, error);
+    error = "unexpected " + Quote(line);
+    return false;
+}
+
+/// Reads the header from the first kMaxHeaderBytes of the file, line by line as vcglib will.
+bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std::string &error)
+{
+    std::string text;
+    std::size_t start = 0;
+    if (!ReadHeaderBytes(in, fileSize, text, start, error)) return false;
     bool formatSeen = false;
-    std::size_t start = magicBytes;
     for (int lineNumber = 2;; ++lineNumber) {
-        const std::size_t newline = text.find('\n', start);
-        const std::size_t end = newline == std::string::npos ? text.size() : newline;
         const std::string where = "header line " + std::to_string(lineNumber) + ": ";
-        if (end - start > kMaxHeaderLineBytes) {
-            error = where + "longer than " + std::to_string(kMaxHeaderLineBytes) + " bytes";
-            return false;
-        }
-        if (newline == std::string::npos) {
-            if (text.size() < fileSize) error = "no end_header within the first " + std::to_string(kMaxHeaderBytes) + " bytes";
-            else error = "the file ends before end_header";
-            return false;
-        }
-        std::string line = text.substr(start, end - start);
-        start = newline + 1;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        for (char c : line) {
-            const unsigned char u = static_cast<unsigned char>(c);
-            if (u != '\t' && (u < 0x20 || u >= 0x7f)) {
-                error = where + "holds a non-printable byte: " + Quote(line);
-                return false;
-            }
-        }
+        std::string line;
+        if (!NextHeaderLine(text, fileSize, where, start, line, error)) return false;
         const std::vector<std::string> tokens = SplitTokens(line);
         if (tokens.empty()) {
             error = where + "empty";
             return false;
         }
-        const std::string &keyword = tokens[0];
-        if (keyword == "comment") continue;
+        if (tokens[0] == "comment") continue;
+        bool parsed;
         if (!formatSeen) {
-            if (keyword != "format" || tokens.size() != 3 || tokens[2] != "1.0") {
-                error = where + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0', got " + Quote(line);
-                return false;
-            }
-            if (tokens[1] == "ascii") header.binary = false;
-            else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") header.binary = true;
-            else {
-                error = where + "unknown format " + Quote(tokens[1]);
-                return false;
-            }
-            formatSeen = true;
-        } else if (keyword == "obj_info") {
-            continue;
-        } else if (keyword == "element") {
-            if (tokens.size() != 3) {
-                error = where + "expected 'element NAME COUNT', got " + Quote(line);
-                return false;
-            }
-            for (const HeaderElement &e : header.elements) {
-                if (e.name == tokens[1]) {
-                    error = where + "a second element " + Quote(tokens[1]);
-                    return false;
-                }
-            }
-            HeaderElement element;
-            element.name = tokens[1];
-            if (!ParseCount(element.name, tokens[2], element.count, error)) {
-                error = where + error;
-                return false;
-            }
-            header.elements.push_back(element);
-        } else if (keyword == "property") {
-            if (header.elements.empty()) {
-                error = where + "a property before any element";
-                return false;
-            }
-            HeaderProperty property;
-            if (!ParseProperty(tokens, property, error)) {
-                error = where + error;
-                return false;
-            }
-            HeaderElement &element = header.elements.back();
-            if (element.Find(property.name)) {
-                error = where + "a second property " + Quote(property.name) + " in element " + Quote(element.name);
-                return false;
-            }
-            element.properties.push_back(property);
-        } else if (keyword == "end_header" && tokens.size() == 1) {
+            parsed = formatSeen = ParseFormat(tokens, line, header, error);
+        } else if (tokens[0] == "end_header" && tokens.size() == 1) {
             header.bodyOffset = start;
             return true;
         } else {
-            error = where + "unexpected " + Quote(line);
+            parsed = ParseDeclaration(tokens, line, header, error);
+        }
+        if (!parsed) {
+            error = where + error;
             return false;
         }
     }
@@ -347,7 +392,7 @@ bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string 
         // An ASCII file may end without a separator after its last value.
         const std::uint64_t neededNow = binary || needed == 0 ? needed : needed - 1;
         if (neededNow > available) {
-            error = "the header announces " + std::to_string(e.count) + " " + Printable(e.name, kQuoteChars) +
+            error = "the header announces " + std::to_string(e.count) + " " + surfel_io::printableText(e.name, kQuoteChars) +
                     " record(s) of at least " + std::to_string(recordBytes) + " bytes, but only " +
                     std::to_string(available) + " bytes follow the header" +
                     (needed > elementBytes ? " and the elements before it" : "");
@@ -357,7 +402,7 @@ bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string 
     return true;
 }
 
-std::string Bounded(const std::string &message) { return Printable(message, kMaxErrorChars - 3); }
+std::string Bounded(const std::string &message) { return surfel_io::printableText(message, kMaxErrorChars); }
 
 } // namespace
 

@@ -6,29 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <io_surfel/printable_text.h>
+
 namespace gsresample {
 
-std::string Printable(const std::string &text, std::size_t maxChars)
-{
-    std::string out;
-    const std::size_t shown = text.size() < maxChars ? text.size() : maxChars;
-    for (std::size_t i = 0; i < shown; ++i) {
-        const unsigned char c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c < 0x7f) {
-            out += char(c);
-        } else {
-            char escaped[5];
-            std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
-            out += escaped;
-        }
-    }
-    if (shown < text.size()) out += "...";
-    return out;
-}
+std::string Quoted(const std::string &text) { return "'" + surfel_io::printableText(text, kQuotedTextChars) + "'"; }
 
 namespace {
-
-std::string Quoted(const std::string &text) { return "'" + Printable(text) + "'"; }
 
 // strtol and strtod skip leading blanks and stop at an embedded NUL: the text must start with
 // a sign or a digit (or '.') and be consumed entirely.

@@ -11,9 +11,11 @@
 
 namespace gsresample {
 
-/// At most `maxChars` characters of `text` (then "..."), every byte outside printable ASCII
-/// written as \xHH: safe to put in a one-line message whatever `text` holds.
-std::string Printable(const std::string &text, std::size_t maxChars = 40);
+/// `text` in single quotes, escaped and cut as these functions quote it in their errors
+/// (surfel_io::printableText): within the quotes at most kQuotedTextChars characters, 40 of
+/// the text and the "..." of a cut.
+constexpr std::size_t kQuotedTextChars = 43;
+std::string Quoted(const std::string &text);
 
 /// A decimal integer in [min, max], optionally signed.
 bool ParseInt(const std::string &text, int min, int max, int &value, std::string &error);

@@ -56,6 +56,89 @@ bool readAll(vcg::ply::PlyFile &file, vcg::ply::PlyElement &element, const std::
     return all;
 }
 
+// The optional vertex properties plylib was asked to store (the file has them).
+struct VertexProperties
+{
+    bool normals = false;
+    bool radius = false;
+    bool ellipses = false;
+    bool fitOffsets = false;
+    bool colors = false;
+};
+
+// Asks plylib to store the vertex properties of a VertexRecord the file has; x, y and z are needed.
+VertexProperties requestVertexProperties(vcg::ply::PlyFile &file, vcg::ply::PlyElement &vertexElement,
+                                         const std::string &path)
+{
+    if (!readAll(file, vertexElement, {"x", "y", "z"}, offsetof(VertexRecord, position)))
+        throw std::runtime_error(path + ": vertices lack x, y or z");
+    VertexProperties has;
+    has.normals = readAll(file, vertexElement, {"nx", "ny", "nz"}, offsetof(VertexRecord, normal));
+    has.radius = readScalar(file, vertexElement, "radius", vcg::ply::T_FLOAT, offsetof(VertexRecord, radius));
+    has.ellipses =
+        readAll(file, vertexElement, {"major_x", "major_y", "major_z"}, offsetof(VertexRecord, majorAxis)) &&
+        readAll(file, vertexElement, {"minor_x", "minor_y", "minor_z"}, offsetof(VertexRecord, minorAxis));
+    has.fitOffsets =
+        readScalar(file, vertexElement, "fit_offset", vcg::ply::T_FLOAT, offsetof(VertexRecord, fitOffset));
+    has.colors = true;
+    const char *const channels[3] = {"red", "green", "blue"};
+    for (int c = 0; c < 3; ++c)
+        has.colors = readScalar(file, vertexElement, channels[c], vcg::ply::T_UCHAR,
+                                offsetof(VertexRecord, color) + c) && has.colors;
+    readScalar(file, vertexElement, "alpha", vcg::ply::T_UCHAR, offsetof(VertexRecord, color) + 3); // else opaque
+    return has;
+}
+
+// Asks plylib to store the face element's corner list as a FaceRecord; false when it has none.
+bool requestFaces(vcg::ply::PlyFile &file, vcg::ply::PlyElement &faceElement)
+{
+    for (const char *name : {"vertex_indices", "vertex_index"}) {
+        vcg::ply::PlyProperty *list = faceElement.FindProp(name);
+        if (list != nullptr && list->islist)
+            return file.AddToRead("face", name, list->tipo, vcg::ply::T_INT, offsetof(FaceRecord, indices), 1, 0,
+                                  list->tipoindex, vcg::ply::T_INT, offsetof(FaceRecord, count)) == vcg::ply::E_NOERROR;
+    }
+    return false;
+}
+
+// Reads `count` vertex records of the current element into `result` (fit offsets apart).
+void readVertices(vcg::ply::PlyFile &file, int count, const VertexProperties &has, const std::string &path,
+                  PointSetFile &result, std::vector<float> &fitOffsets)
+{
+    SurfelArrays &s = result.surfels;
+    for (int i = 0; i < count; ++i) {
+        VertexRecord v = {};
+        v.color[3] = 255;
+        if (file.Read(&v) == -1)
+            throw std::runtime_error(path + ": truncated vertex data");
+        s.positions.insert(s.positions.end(), v.position, v.position + 3);
+        if (has.normals)
+            s.normals.insert(s.normals.end(), v.normal, v.normal + 3);
+        if (has.radius)
+            result.radii.push_back(v.radius);
+        if (has.ellipses) {
+            s.majorAxes.insert(s.majorAxes.end(), v.majorAxis, v.majorAxis + 3);
+            s.minorAxes.insert(s.minorAxes.end(), v.minorAxis, v.minorAxis + 3);
+        }
+        if (has.colors)
+            s.colors.insert(s.colors.end(), v.color, v.color + 4);
+        if (has.fitOffsets)
+            fitOffsets.push_back(v.fitOffset);
+    }
+}
+
+// Reads `count` face records of the current element, fanned into triangles.
+void readFaces(vcg::ply::PlyFile &file, int count, const std::string &path, std::vector<unsigned> &triangles)
+{
+    for (int i = 0; i < count; ++i) {
+        FaceRecord f;
+        if (file.Read(&f) == -1 || f.count > kMaxPolygonVertices)
+            throw std::runtime_error(path + ": bad face data");
+        for (int k = 2; k < f.count; ++k) // fan triangulation
+            triangles.insert(triangles.end(), {unsigned(f.indices[0]), unsigned(f.indices[k - 1]), unsigned(f.indices[k])});
+    }
+}
+
 } // namespace
 
 PointSetFile readPointSetFile(const std::string &path)
@@ -66,80 +149,28 @@ PointSetFile readPointSetFile(const std::string &path)
     vcg::ply::PlyElement *vertexElement = findElement(file, "vertex");
     if (vertexElement == nullptr)
         throw std::runtime_error(path + " has no vertex element");
-
-    if (!readAll(file, *vertexElement, {"x", "y", "z"}, offsetof(VertexRecord, position)))
-        throw std::runtime_error(path + ": vertices lack x, y or z");
-    const bool hasNormals = readAll(file, *vertexElement, {"nx", "ny", "nz"}, offsetof(VertexRecord, normal));
-    const bool hasRadius = readScalar(file, *vertexElement, "radius", vcg::ply::T_FLOAT, offsetof(VertexRecord, radius));
-    const bool hasEllipses =
-        readAll(file, *vertexElement, {"major_x", "major_y", "major_z"}, offsetof(VertexRecord, majorAxis)) &&
-        readAll(file, *vertexElement, {"minor_x", "minor_y", "minor_z"}, offsetof(VertexRecord, minorAxis));
-    const bool hasFitOffsets =
-        readScalar(file, *vertexElement, "fit_offset", vcg::ply::T_FLOAT, offsetof(VertexRecord, fitOffset));
-    bool hasColors = true;
-    const char *const channels[3] = {"red", "green", "blue"};
-    for (int c = 0; c < 3; ++c)
-        hasColors = readScalar(file, *vertexElement, channels[c], vcg::ply::T_UCHAR,
-                               offsetof(VertexRecord, color) + c) && hasColors;
-    readScalar(file, *vertexElement, "alpha", vcg::ply::T_UCHAR, offsetof(VertexRecord, color) + 3); // else opaque
-
+    const VertexProperties has = requestVertexProperties(file, *vertexElement, path);
     vcg::ply::PlyElement *faceElement = findElement(file, "face");
-    bool hasFaces = false;
-    if (faceElement != nullptr) {
-        for (const char *name : {"vertex_indices", "vertex_index"}) {
-            vcg::ply::PlyProperty *list = faceElement->FindProp(name);
-            if (list != nullptr && list->islist) {
-                hasFaces = file.AddToRead("face", name, list->tipo, vcg::ply::T_INT, offsetof(FaceRecord, indices), 1, 0,
-                                          list->tipoindex, vcg::ply::T_INT, offsetof(FaceRecord, count)) ==
-                           vcg::ply::E_NOERROR;
-                break;
-            }
-        }
-    }
+    const bool hasFaces = faceElement != nullptr && requestFaces(file, *faceElement);
 
     PointSetFile result;
-    SurfelArrays &s = result.surfels;
     std::vector<float> fitOffsets;
     for (std::size_t e = 0; e < file.elements.size(); ++e) {
         file.SetCurElement(int(e));
         const int count = file.elements[e].number;
         if (&file.elements[e] == vertexElement) {
-            for (int i = 0; i < count; ++i) {
-                VertexRecord v = {};
-                v.color[3] = 255;
-                if (file.Read(&v) == -1)
-                    throw std::runtime_error(path + ": truncated vertex data");
-                s.positions.insert(s.positions.end(), v.position, v.position + 3);
-                if (hasNormals)
-                    s.normals.insert(s.normals.end(), v.normal, v.normal + 3);
-                if (hasRadius)
-                    result.radii.push_back(v.radius);
-                if (hasEllipses) {
-                    s.majorAxes.insert(s.majorAxes.end(), v.majorAxis, v.majorAxis + 3);
-                    s.minorAxes.insert(s.minorAxes.end(), v.minorAxis, v.minorAxis + 3);
-                }
-                if (hasColors)
-                    s.colors.insert(s.colors.end(), v.color, v.color + 4);
-                if (hasFitOffsets)
-                    fitOffsets.push_back(v.fitOffset);
-            }
+            readVertices(file, count, has, path, result, fitOffsets);
         } else if (&file.elements[e] == faceElement && hasFaces) {
-            for (int i = 0; i < count; ++i) {
-                FaceRecord f;
-                if (file.Read(&f) == -1 || f.count > kMaxPolygonVertices)
-                    throw std::runtime_error(path + ": bad face data");
-                for (int k = 2; k < f.count; ++k) // fan triangulation
-                    result.triangles.insert(result.triangles.end(),
-                                            {unsigned(f.indices[0]), unsigned(f.indices[k - 1]), unsigned(f.indices[k])});
-            }
+            readFaces(file, count, path, result.triangles);
         } else {
             char skipped[1 << 12];
             for (int i = 0; i < count; ++i)
                 file.Read(skipped); // no property of this element is stored
         }
     }
+    SurfelArrays &s = result.surfels;
     undoFitOffsets(s, fitOffsets);
-    result.hasNormals = hasNormals && std::any_of(s.normals.begin(), s.normals.end(), [](float v) { return v != 0.0f; });
+    result.hasNormals = has.normals && std::any_of(s.normals.begin(), s.normals.end(), [](float v) { return v != 0.0f; });
     const unsigned vertexCount = unsigned(s.size());
     if (std::any_of(result.triangles.begin(), result.triangles.end(), [&](unsigned i) { return i >= vertexCount; }))
         throw std::runtime_error(path + ": face index out of range");

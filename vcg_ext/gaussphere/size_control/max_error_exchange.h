@@ -156,81 +156,16 @@ public:
         Measure m;
         std::vector<vcg::Point3d> moved; // old and new centres of every surfel that changed
         std::vector<int> changed;
-        for (size_t c = 0; c < std::max(surfels.size(), current.size()); ++c) {
-            const bool had = c < current.size(), has = c < surfels.size();
-            if (had && has && Same(current[c], surfels[c])) continue;
-            if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
-            if (has) moved.push_back(vcg::Point3d::Construct(surfels[c].position));
-            changed.push_back(int(c));
-        }
+        Changes(current, surfels, moved, changed);
         std::set_union(changed.begin(), changed.end(), changedSinceReset_.begin(), changedSinceReset_.end(),
                        std::back_inserter(m.fresh));
-        const int n = int(points_.size());
         double untouchedMax = 0;
         int untouchedWorst = -1; // the first point of the largest distance: the same for any thread count
-        std::vector<char> affected(n, 0);
-        // Many changed surfels (the crease fit's groups): their centres are looked up in a tree,
-        // the candidates it finds checked as below (the same points, in a time that does not
-        // grow with the number of changed surfels times the points).
-        std::unique_ptr<CenterTree> movedTree;
-        if (moved.size() > 64) movedTree.reset(new CenterTree(moved));
-#pragma omp parallel
-        {
-            double localMax = 0;
-            int localWorst = -1;
-            std::vector<unsigned> near;
-            std::vector<float> scratch;
-#pragma omp for schedule(static) nowait
-            for (int i = 0; i < n; ++i) {
-                const vcg::Point3d p = vcg::Point3d::Construct(points_[i]);
-                const double r2 = double(reach_[i]) * reach_[i];
-                if (movedTree && std::isfinite(r2)) {
-                    near.clear();
-                    scratch.clear();
-                    // Widened by the single-precision rounding of the tree's distances.
-                    movedTree->Within(p, double(reach_[i]) * (1 + 1e-5) + 1e-5 * p.Norm(), near, scratch);
-                    for (unsigned c : near)
-                        if ((moved[c] - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
-                } else {
-                    for (const vcg::Point3d &c : moved)
-                        if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
-                }
-                if (!affected[i]) KeepWorst(distance_[i], i, localMax, localWorst);
-            }
-#pragma omp critical
-            if (localWorst >= 0 && (untouchedWorst < 0 || localMax > untouchedMax ||
-                                    (localMax == untouchedMax && localWorst < untouchedWorst))) {
-                untouchedMax = localMax;
-                untouchedWorst = localWorst;
-            }
-        }
-        for (int i = 0; i < n; ++i)
+        const std::vector<char> affected = Affected(moved, untouchedMax, untouchedWorst);
+        for (int i = 0; i < int(affected.size()); ++i)
             if (affected[i]) m.points.push_back(i);
-        const int count = int(m.points.size());
-        m.distance.assign(count, 0.0);
-        m.reach.assign(count, 0.f);
-        m.normalError.assign(count, 0.f);
-        if (count > 0) {
-            std::vector<int> local;
-            Project(LocalSurface(surfels, m.fresh, m.points, local), m.points.data(), 0, count, m.distance.data(),
-                    m.reach.data(), m.normalError.data());
-            std::vector<int> beyond, beyondPoint; // projections that reached farther (indices into m.points,
-                                                  // points): again on every surfel
-            for (int t = 0; t < count; ++t)
-                if (!(m.reach[t] <= LocalRadius(m.points[t]))) { beyond.push_back(t); beyondPoint.push_back(m.points[t]); }
-            if (!beyond.empty()) {
-                std::vector<double> distance(beyond.size());
-                std::vector<float> reach(beyond.size()), normalError(beyond.size());
-                Project(BlendedSurfaceOf(surfels, metric_), beyondPoint.data(), 0, int(beyond.size()), distance.data(),
-                        reach.data(), normalError.data());
-                for (size_t b = 0; b < beyond.size(); ++b) {
-                    m.distance[size_t(beyond[b])] = distance[b];
-                    m.reach[size_t(beyond[b])] = reach[b];
-                    m.normalError[size_t(beyond[b])] = normalError[b];
-                }
-            }
-        }
-        for (int t = 0; t < count; ++t) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
+        ProjectAffected(surfels, m);
+        for (int t = 0; t < int(m.points.size()); ++t) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
     }
@@ -300,6 +235,93 @@ private:
     {
         return a.position == b.position && a.normal == b.normal && a.majorAxis == b.majorAxis &&
                a.minorAxis == b.minorAxis && a.blendScale == b.blendScale;
+    }
+
+    /// The surfels of `surfels` that differ from `current` (`changed`, ascending; extra ones on
+    /// either side count) and their old and new centres (`moved`).
+    static void Changes(const std::vector<Surfel> &current, const std::vector<Surfel> &surfels,
+                        std::vector<vcg::Point3d> &moved, std::vector<int> &changed)
+    {
+        for (size_t c = 0; c < std::max(surfels.size(), current.size()); ++c) {
+            const bool had = c < current.size(), has = c < surfels.size();
+            if (had && has && Same(current[c], surfels[c])) continue;
+            if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
+            if (has) moved.push_back(vcg::Point3d::Construct(surfels[c].position));
+            changed.push_back(int(c));
+        }
+    }
+
+    /// Flags the points whose current projection reaches one of the `moved` centres; the largest
+    /// distance of the others and its first point go to untouchedMax, untouchedWorst (left as
+    /// they are when every point is flagged).
+    std::vector<char> Affected(const std::vector<vcg::Point3d> &moved, double &untouchedMax, int &untouchedWorst) const
+    {
+        const int n = int(points_.size());
+        std::vector<char> affected(n, 0);
+        // Many changed surfels (the crease fit's groups): their centres are looked up in a tree,
+        // the candidates it finds checked as below (the same points, in a time that does not
+        // grow with the number of changed surfels times the points).
+        std::unique_ptr<CenterTree> movedTree;
+        if (moved.size() > 64) movedTree.reset(new CenterTree(moved));
+#pragma omp parallel
+        {
+            double localMax = 0;
+            int localWorst = -1;
+            std::vector<unsigned> near;
+            std::vector<float> scratch;
+#pragma omp for schedule(static) nowait
+            for (int i = 0; i < n; ++i) {
+                const vcg::Point3d p = vcg::Point3d::Construct(points_[i]);
+                const double r2 = double(reach_[i]) * reach_[i];
+                if (movedTree && std::isfinite(r2)) {
+                    near.clear();
+                    scratch.clear();
+                    // Widened by the single-precision rounding of the tree's distances.
+                    movedTree->Within(p, double(reach_[i]) * (1 + 1e-5) + 1e-5 * p.Norm(), near, scratch);
+                    for (unsigned c : near)
+                        if ((moved[c] - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
+                } else {
+                    for (const vcg::Point3d &c : moved)
+                        if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
+                }
+                if (!affected[i]) KeepWorst(distance_[i], i, localMax, localWorst);
+            }
+#pragma omp critical
+            if (localWorst >= 0 && (untouchedWorst < 0 || localMax > untouchedMax ||
+                                    (localMax == untouchedMax && localWorst < untouchedWorst))) {
+                untouchedMax = localMax;
+                untouchedWorst = localWorst;
+            }
+        }
+        return affected;
+    }
+
+    /// Projects the points `m.points` on `surfels`: on a surface of the surfels near them
+    /// (LocalSurface), and again on every surfel where a projection reached farther than that.
+    void ProjectAffected(const std::vector<Surfel> &surfels, Measure &m) const
+    {
+        const int count = int(m.points.size());
+        m.distance.assign(count, 0.0);
+        m.reach.assign(count, 0.f);
+        m.normalError.assign(count, 0.f);
+        if (count == 0) return;
+        std::vector<int> local;
+        Project(LocalSurface(surfels, m.fresh, m.points, local), m.points.data(), 0, count, m.distance.data(),
+                m.reach.data(), m.normalError.data());
+        std::vector<int> beyond, beyondPoint; // projections that reached farther (indices into m.points,
+                                              // points): again on every surfel
+        for (int t = 0; t < count; ++t)
+            if (!(m.reach[t] <= LocalRadius(m.points[t]))) { beyond.push_back(t); beyondPoint.push_back(m.points[t]); }
+        if (beyond.empty()) return;
+        std::vector<double> distance(beyond.size());
+        std::vector<float> reach(beyond.size()), normalError(beyond.size());
+        Project(BlendedSurfaceOf(surfels, metric_), beyondPoint.data(), 0, int(beyond.size()), distance.data(),
+                reach.data(), normalError.data());
+        for (size_t b = 0; b < beyond.size(); ++b) {
+            m.distance[size_t(beyond[b])] = distance[b];
+            m.reach[size_t(beyond[b])] = reach[b];
+            m.normalError[size_t(beyond[b])] = normalError[b];
+        }
     }
 
     /// How far from point i a local surface holds every surfel (LocalSurface): twice the reach of

@@ -82,6 +82,92 @@ struct SurfaceErrorBoundResult
     std::vector<Surfel> surfels; ///< GenerateSurfels of the final clusters (unless cancelled)
 };
 
+namespace detail {
+
+/// What one projection of every point on the blended surface finds (SplitToSurfaceErrorBound).
+struct BoundCheck
+{
+    std::vector<int> marked; ///< clusters to split (their surfels blended at a point beyond the bound)
+    std::vector<int> narrow; ///< one-point surfels among them
+    int above = 0;           ///< points farther than the bound
+    double worst = 0;        ///< the largest distance
+    bool cancelled = false;  ///< progress returned false
+};
+
+/// Projects every point on `surface` and collects the clusters of the surfels nearest to the
+/// projection of each point beyond maxDistance (the ones the blend draws from, and a few facing
+/// away) and the point's own: collected per thread, merged in cluster order (deterministic).
+/// `progress(roundNumber, f)` is called between blocks of points (they only pace it).
+inline BoundCheck CheckSurfaceErrorBound(const SurfelSurface &surface, const PointArray &points,
+                                         const PointArray &normals, const BlendParams &metric, double tolerance,
+                                         double maxDistance, const ClusterRefiner &refiner,
+                                         const Clustering &clusters, int roundNumber,
+                                         const std::function<bool(int, double)> &progress)
+{
+    const int n = int(points.size());
+    BoundCheck check;
+    int above = 0;
+    double worst = 0;
+    const int block = 1 << 16;
+    for (int start = 0; start < n; start += block) {
+        if (progress && !progress(roundNumber, double(start) / n)) {
+            check.cancelled = true;
+            return check;
+        }
+        const int end = std::min(n, start + block);
+#pragma omp parallel reduction(+ : above) reduction(max : worst)
+        {
+            SurfelSurface::Scratch scratch;
+            std::vector<int> local, localNarrow;
+#pragma omp for schedule(dynamic, 1024)
+            for (int i = start; i < end; ++i) {
+                const vcg::Point3d q = vcg::Point3d::Construct(points[i]);
+                const auto projection = surface.Project(q, vcg::Point3d::Construct(normals[i]), metric.maxIterations,
+                                                        tolerance, scratch);
+                const double d = (q - projection.foot).Norm();
+                worst = std::max(worst, d);
+                if (d <= maxDistance) continue;
+                ++above;
+                local.push_back(clusters.label[i]);
+                for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
+                    const int c = scratch.queue.getIndex(j);
+                    local.push_back(c);
+                    if (refiner.Size(c) == 1) localNarrow.push_back(c);
+                }
+            }
+#pragma omp critical
+            {
+                check.marked.insert(check.marked.end(), local.begin(), local.end());
+                check.narrow.insert(check.narrow.end(), localNarrow.begin(), localNarrow.end());
+            }
+        }
+    }
+    check.above = above;
+    check.worst = worst;
+    return check;
+}
+
+/// Splits the marked clusters of more than one member and halves the blend scale of the
+/// one-point surfels to narrow, down to kMinBlendScale; returns the splits, `narrowed` receives
+/// the halvings.
+inline int SplitAndNarrow(BoundCheck &check, ClusterRefiner &refiner, std::vector<float> &blendScale, int &narrowed)
+{
+    SortUnique(check.marked);
+    SortUnique(check.narrow);
+    int splits = 0;
+    narrowed = 0;
+    for (int c : check.marked)
+        if (refiner.Size(c) > 1 && refiner.Split(c) >= 0) ++splits;
+    for (int c : check.narrow)
+        if (blendScale[c] > kMinBlendScale) {
+            blendScale[c] = std::max(kMinBlendScale, 0.5f * blendScale[c]);
+            ++narrowed;
+        }
+    return splits;
+}
+
+} // namespace detail
+
 /// Splits clusters of `refiner` (which works on `clusters`) until every point lies within
 /// maxDistance of the blended surface of the surfels GenerateSurfels makes from them, measured
 /// as metric::ComputeSurfelError measures (default BlendParams), narrowing one-point
@@ -107,7 +193,6 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
 {
     const BlendParams metric;
     const double tolerance = metric.convergenceTolerance * diagonal;
-    const int n = int(points.size());
     SurfaceErrorBoundResult result;
     std::vector<float> blendScale; // per cluster, 1 until narrowed
     SurfelGenerationParams narrowedParam = surfelParam;
@@ -118,60 +203,17 @@ inline SurfaceErrorBoundResult SplitToSurfaceErrorBound(const PointArray &points
         if (adjustSurfels) adjustSurfels(result.surfels);
         const SurfelSurface surface = BlendedSurfaceOf(result.surfels, metric);
         ++result.rounds;
-        // Clusters to split: those of the surfels nearest to the projection of a point beyond
-        // the bound (the ones the blend draws from, and a few facing away), and the point's own.
-        // Collected per thread, merged in cluster order (deterministic).
-        // Blocks of points only pace the progress reports.
-        std::vector<int> marked, narrow; // clusters to split; one-point surfels to narrow
-        int above = 0;
-        double worst = 0;
-        const int block = 1 << 16;
-        for (int start = 0; start < n; start += block) {
-            if (progress && !progress(result.rounds, double(start) / n)) {
-                result.cancelled = true;
-                return result;
-            }
-            const int end = std::min(n, start + block);
-#pragma omp parallel reduction(+ : above) reduction(max : worst)
-            {
-                SurfelSurface::Scratch scratch;
-                std::vector<int> local, localNarrow;
-#pragma omp for schedule(dynamic, 1024)
-                for (int i = start; i < end; ++i) {
-                    const vcg::Point3d q = vcg::Point3d::Construct(points[i]);
-                    const auto projection = surface.Project(q, vcg::Point3d::Construct(normals[i]), metric.maxIterations,
-                                                            tolerance, scratch);
-                    const double d = (q - projection.foot).Norm();
-                    worst = std::max(worst, d);
-                    if (d <= maxDistance) continue;
-                    ++above;
-                    local.push_back(clusters.label[i]);
-                    for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
-                        const int c = scratch.queue.getIndex(j);
-                        local.push_back(c);
-                        if (refiner.Size(c) == 1) localNarrow.push_back(c);
-                    }
-                }
-#pragma omp critical
-                {
-                    marked.insert(marked.end(), local.begin(), local.end());
-                    narrow.insert(narrow.end(), localNarrow.begin(), localNarrow.end());
-                }
-            }
+        detail::BoundCheck check = detail::CheckSurfaceErrorBound(surface, points, normals, metric, tolerance, maxDistance,
+                                                                  refiner, clusters, result.rounds, progress);
+        if (check.cancelled) {
+            result.cancelled = true;
+            return result;
         }
-        result.pointsAbove = above;
-        result.maxDistance = worst;
-        if (above == 0 || result.rounds >= maxRounds) break;
-        SortUnique(marked);
-        SortUnique(narrow);
-        int splits = 0, narrowed = 0;
-        for (int c : marked)
-            if (refiner.Size(c) > 1 && refiner.Split(c) >= 0) ++splits;
-        for (int c : narrow)
-            if (blendScale[c] > kMinBlendScale) {
-                blendScale[c] = std::max(kMinBlendScale, 0.5f * blendScale[c]);
-                ++narrowed;
-            }
+        result.pointsAbove = check.above;
+        result.maxDistance = check.worst;
+        if (check.above == 0 || result.rounds >= maxRounds) break;
+        int narrowed = 0;
+        const int splits = detail::SplitAndNarrow(check, refiner, blendScale, narrowed);
         result.narrowings += narrowed;
         if (splits == 0 && narrowed == 0) break;
         // A half's plane is fitted anew and may lie farther from a member than the whole's did.
