@@ -3,18 +3,18 @@
 # Sets up (Debian packages, MeshLab source), then runs every stage and prints one line each:
 #   release   builds everything (Release) and runs every test, including the end-to-end runs
 #             of meshlabserver and the GUI under Xvfb; CTEST ARGS go to this ctest
+#   debug     compiles the algorithm tests, the error-metric tests and gsresample as Debug (-O0)
+#   sanitize  scripts/sanitize.sh: those tests and gsresample under ASan + UBSan
+#   fuzz      scripts/fuzz.sh: each fuzz target for $FUZZ_SECONDS seconds (default 60)
 #   hosts     the plugins in MeshLab 2022.02 (Debian 13, in a trixie root made once by
 #             scripts/hosts/trixie_root.sh): the filter, the .surfel round trip and the surfel error
 #             filter through MeshLab's own plugin loader, Ellipse Splatting in its GUI under Xvfb;
 #             the .deb packages for Debian 12 and 13 built, installed into clean roots, used and
 #             removed (scripts/package.sh, scripts/hosts/deb_test.sh); the same checks in
 #             MeshLab 2025.07, built once per machine from ../shared's source
-#             (scripts/hosts/meshlab2025.sh; HOSTS_2025=0 leaves 2025.07 out). The roots it needs
-#             are made (once per machine, from the Debian mirror) while the stages before it run.
-#   debug     compiles the algorithm tests, the error-metric tests and gsresample as Debug (-O0)
-#   sanitize  scripts/sanitize.sh: those tests and gsresample under ASan + UBSan
-#   fuzz      scripts/fuzz.sh: each fuzz target for $FUZZ_SECONDS seconds (default 60)
-# STAGES="release hosts debug sanitize fuzz" (the default) picks stages. Every stage runs even when
+#             (scripts/hosts/meshlab2025.sh; HOSTS_2025=0 leaves 2025.07 out). The roots and the
+#             2025.07 build it needs are made (once per machine) while the stages before it run.
+# STAGES="release debug sanitize fuzz hosts" (the default) picks stages. Every stage runs even when
 # one before it failed; the exit status is 0 only when all passed.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -36,19 +36,20 @@ stage_debug() {
     cmake --build "$debug" -j "$(nproc)" --target test_gaussphere_algorithm test_surfel_error gsresample
 }
 
-# The Debian roots of the hosts stage come from the network and disk, not the CPU: they are made
-# in the background from the start (once per machine), and the stage waits for them.
-start_roots() {
+# What the hosts stage needs from outside the project is made once per machine, in the background
+# from the start, while the other stages run: the Debian roots (network and disk), then MeshLab
+# 2025.07 (its build runs at nice 15, in the CPU the other stages leave idle). The stage waits.
+start_host_deps() {
   local hosts="$here/scripts/hosts"
   mkdir -p "$build"
-  { "$hosts/trixie_root.sh" && "$hosts/clean_root.sh" bookworm && "$hosts/clean_root.sh" trixie; } \
-    > "$build/hosts-roots.log" 2>&1 &
-  roots_job=$!
+  { "$hosts/trixie_root.sh" && "$hosts/clean_root.sh" bookworm && "$hosts/clean_root.sh" trixie &&
+      if [ "${HOSTS_2025:-1}" != 0 ]; then "$hosts/meshlab2025.sh"; fi; } > "$build/hosts-deps.log" 2>&1 &
+  host_deps_job=$!
 }
 
 stage_hosts() {
   local hosts="$here/scripts/hosts" versions=(2022.02)
-  wait "$roots_job" || { cat "$build/hosts-roots.log"; return 1; }
+  wait "$host_deps_job" || { cat "$build/hosts-deps.log"; return 1; }
   [ "${HOSTS_2025:-1}" = 0 ] || versions+=(2025.07)
   local version check
   for version in "${versions[@]}"; do
@@ -63,10 +64,10 @@ stage_sanitize() { bash "$here/scripts/sanitize.sh"; }
 stage_fuzz() { bash "$here/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"; }
 
 bash "$here/scripts/setup.sh" || exit 1
-case " ${STAGES:-release hosts debug sanitize fuzz} " in *" hosts "*) start_roots ;; esac
+case " ${STAGES:-release debug sanitize fuzz hosts} " in *" hosts "*) start_host_deps ;; esac
 summary=()
 failed=0
-for stage in ${STAGES:-release hosts debug sanitize fuzz}; do
+for stage in ${STAGES:-release debug sanitize fuzz hosts}; do
   start=$SECONDS
   if [ "$stage" = release ]; then stage_release "$@"; else "stage_$stage"; fi
   status=$?
