@@ -14,13 +14,33 @@ using namespace vcg::gaussphere;
 
 namespace {
 
-/// A shipped script: its file name, what it is for, and the values it sets apart from the defaults.
+/// A shipped script: its file name, what it is for, the values it sets apart from the defaults,
+/// and the filters that follow the resampling (empty: none).
 struct ShippedScript
 {
     const char *file;
     const char *purpose;
     std::vector<std::pair<const char *, const char *>> values;
+    const char *then = "";
 };
+
+/// MeshLab 2020.09's Screened Poisson on the resampled layer (every parameter listed, as
+/// meshlabserver needs), with each surfel's quality, the number of points it represents, as its
+/// confidence: surfels are denser at features, and unweighted samples of uneven density make
+/// Screened Poisson give the sparse parts too little weight.
+const char *const kScreenedPoissonByRepresentedPoints =
+    " <filter name=\"Surface Reconstruction: Screened Poisson\">\n"
+    "  <Param type=\"RichBool\" value=\"false\" name=\"visibleLayer\"/>\n"
+    "  <Param type=\"RichInt\" value=\"8\" name=\"depth\"/>\n"
+    "  <Param type=\"RichInt\" value=\"5\" name=\"fullDepth\"/>\n"
+    "  <Param type=\"RichInt\" value=\"0\" name=\"cgDepth\"/>\n"
+    "  <Param type=\"RichFloat\" value=\"1.1\" name=\"scale\"/>\n"
+    "  <Param type=\"RichFloat\" value=\"1.5\" name=\"samplesPerNode\"/>\n"
+    "  <Param type=\"RichFloat\" value=\"4\" name=\"pointWeight\"/>\n"
+    "  <Param type=\"RichInt\" value=\"8\" name=\"iters\"/>\n"
+    "  <Param type=\"RichBool\" value=\"true\" name=\"confidence\"/>\n"
+    "  <Param type=\"RichBool\" value=\"false\" name=\"preClean\"/>\n"
+    " </filter>\n";
 
 const std::vector<ShippedScript> &ShippedScripts()
 {
@@ -32,6 +52,9 @@ const std::vector<ShippedScript> &ShippedScripts()
         {"resample_max_error.mlx", "an error bound of 0.001 of the bounding-box diagonal", {{"MaxError", "0.001"}}},
         {"resample_colorize.mlx", "level 8, the input coloured by cluster", {{"ColorizeClusters", "true"}}},
         {"resample_level8_nofit.mlx", "level 8, surfels at their cluster centroids (the paper)", {{"FitOffsets", "false"}}},
+        {"resample_and_reconstruct.mlx",
+         "level 8, then MeshLab's Screened Poisson (depth 8) on the surfels, weighted by the points each represents",
+         {}, kScreenedPoissonByRepresentedPoints},
     };
     return scripts;
 }
@@ -104,7 +127,7 @@ bool WriteScripts(const std::string &folder)
             std::fprintf(file, "  <Param type=\"%s\" value=\"%s\" name=\"%s\"/>\n", type,
                          ScriptValue(script, spec).c_str(), spec.name);
         }
-        std::fprintf(file, " </filter>\n</FilterScript>\n");
+        std::fprintf(file, " </filter>\n%s</FilterScript>\n", script.then);
         if (std::fclose(file) != 0) return false;
     }
     return true;
