@@ -8,15 +8,14 @@
 #                     "Applied filter", then the dialog moved off the view
 # Taken from screenshots at the Xvfb screen 1280x1024 (lib.sh): each menu, a point along the
 # first row of its submenu (so that the submenu stays open on the way down), the entry.
-# 2025.07's MINI build has only Shaders in the Render menu and only the plugins' submenus in
-# Filters, so its submenus open further left and higher; its view is narrower and taller.
+# 2025.07's MINI build has only Shaders in the Render menu, so that submenu opens further left,
+# and only the project's two filters in Filters > Point Set (2022.02: 13 filters, sorted by
+# name), so the resampling is its first entry; its view is narrower and taller.
 hosts_gui_menus() {
-  local render shaders along entry view log filters pointset pointset_along filter
+  local render=170,9 shaders=200,31 along entry view log filters=116,9 pointset=150,355 pointset_along=520,355 filter
   case "$1" in
-    2022.02) render=170,9 shaders=200,31 along=520,31 entry=560,54 view=449x510+1+70 log=380x75+466+588
-             filters=116,9 pointset=150,355 pointset_along=520,355 filter=600,447 ;;
-    2025.07) render=170,9 shaders=200,31 along=300,31 entry=340,54 view=408x541+1+70 log=410x64+430+594
-             filters=116,9 pointset=150,53 pointset_along=330,53 filter=400,53 ;;
+    2022.02) along=520,31 entry=560,54 view=449x510+1+70 log=380x75+466+588 filter=600,447 ;;
+    2025.07) along=300,31 entry=340,54 view=408x541+1+70 log=410x64+430+594 filter=600,355 ;;
     *) echo "hosts_gui_menus: unknown MeshLab host '$1' (2022.02 or 2025.07)" >&2; return 2 ;;
   esac
   GUI_VIEW=$view GUI_LOG=$log
