@@ -6,8 +6,8 @@
 #   scripts/hosts/gui_e2e.sh 2022.02|2025.07
 #
 # 1. The GUI opens sample_data/bunny.ply; Filters > Point Set > Gaussian Sphere Feature-Sensitive
-#    Resampling is clicked, its dialog's Apply pressed (Return), the dialog moved aside and the
-#    result screenshot; then File > Export Mesh As (Ctrl+Shift+E) for the layer "bunny.ply
+#    Resampling is clicked, its dialog's Apply pressed (Return), the dialog moved aside, the
+#    bunny's layer hidden and the result screenshot; then File > Export Mesh As (Ctrl+Shift+E) for the layer "bunny.ply
 #    resampled" (the file dialog is waited for by that title), the path of a .surfel typed,
 #    the save-options dialog accepted (Return). Checks, on MeshLab's output (its log lines) and
 #    the saved file: the filter's log line "34834 points -> 9618 surfels" and "Applied filter",
@@ -48,7 +48,7 @@ fail() { echo "[gui_e2e] $version: FAIL: $*"; status=1; }
 
 gui_status=0
 "$here/gui_shot.sh" "$version" "$out/exported.png" "$HOSTS_REPO/sample_data/bunny.ply" "${plugins[@]}" \
-  "${GUI_FILTER_STEPS[@]}" --shot "$out/filter.png" \
+  "${GUI_FILTER_STEPS[@]}" --click "$GUI_FIRST_EYE" --shot "$out/filter.png" \
   --xdotool "key ctrl+shift+e" --window '^Save "bunny.ply resampled" Layer$' --xdotool "key ctrl+a" \
   --xdotool "type --delay 30 $saved" --xdotool "key Return" --window "^Choose Saving Options" \
   --xdotool "key Return" --wait-log "Saved Mesh $saved" || gui_status=$?
