@@ -18,7 +18,8 @@
 #   --wait-log REGEX  waits until a line of the GUI's output matches REGEX (grep -E), then 1 s
 #   --window REGEX    waits until a window whose name matches REGEX (xdotool search --name)
 #                     shows, gives it the keyboard focus, then waits 1 s (for --xdotool key/type)
-# Both waits give up after STEP_WAIT (default 180) seconds with a line on stderr; the steps go on.
+# A wait gives up after STEP_WAIT (default 180) seconds or when the GUI has exited: the steps after it are skipped, the
+# screenshot taken, and the exit status is 1 (as when the GUI is no longer running at the end).
 # Writes OUT.png and OUT.log (the GUI's stdout and stderr).
 set -euo pipefail
 here="$(dirname "${BASH_SOURCE[0]}")"
@@ -86,11 +87,13 @@ hosts_in_root env HOME="$run/home" XDG_RUNTIME_DIR="$run" LD_LIBRARY_PATH="$(dir
   sh -c 'echo $$ > "$1/pid"; exec "$2" "$3"' sh "$run" "$exe" "$run/$(basename "$mesh")" \
   > "${out%.png}.log" 2>&1 &
 gui_job=$!
+gave_up=
 gui_wait() { # WHAT CMD...: runs CMD every second until it succeeds, STEP_WAIT seconds at most
   local what=$1 until=$((SECONDS + ${STEP_WAIT:-180}))
   shift
   until "$@" >/dev/null 2>&1; do
-    [ "$SECONDS" -lt "$until" ] || { echo "[gui_shot] $version: gave up waiting for $what" >&2; return 1; }
+    kill -0 "$(cat "$host_run/pid")" 2>/dev/null || { gave_up="waiting for $what: the GUI has exited"; return 1; }
+    [ "$SECONDS" -lt "$until" ] || { gave_up="waiting for $what after ${STEP_WAIT:-180} s"; return 1; }
     sleep 1
   done
 }
@@ -102,10 +105,10 @@ while [ $# -gt 0 ]; do
     --hover) hosts_in_root xdotool mousemove "${2%,*}" "${2#*,}"; sleep 1 ;;
     --xdotool) read -r -a words <<< "$2"; hosts_in_root xdotool "${words[@]}" || true; sleep 2 ;;
     --shot) hosts_screenshot "$2" ;;
-    --wait-log) gui_wait "the GUI's output to match '$2'" grep -qE -- "$2" "${out%.png}.log" && sleep 1 || true ;;
+    --wait-log) gui_wait "the GUI's output to match '$2'" grep -qE -- "$2" "${out%.png}.log" || break; sleep 1 ;;
     --window)
-      gui_wait "a window named '$2'" hosts_in_root xdotool search --onlyvisible --name "$2" &&
-        hosts_in_root xdotool search --onlyvisible --name "$2" windowfocus --sync || true
+      gui_wait "a window named '$2'" hosts_in_root xdotool search --onlyvisible --name "$2" || break
+      hosts_in_root xdotool search --onlyvisible --name "$2" windowfocus --sync || true
       sleep 1 ;;
   esac
   shift 2
@@ -115,5 +118,6 @@ alive=yes
 kill -0 "$(cat "$host_run/pid")" 2>/dev/null || alive=no
 kill "$(cat "$host_run/pid")" 2>/dev/null || true
 wait "$gui_job" 2>/dev/null || true
+[ -z "$gave_up" ] || echo "[gui_shot] $version: gave up $gave_up; the steps after it skipped"
 echo "[gui_shot] $version: screenshot $out (GUI still running at the shot: $alive), log ${out%.png}.log"
-[ "$alive" = yes ]
+[ "$alive" = yes ] && [ -z "$gave_up" ]
