@@ -53,7 +53,7 @@ stage_hosts() {
   [ "${HOSTS_2025:-1}" = 0 ] || versions+=(2025.07)
   local version check
   for version in "${versions[@]}"; do
-    for check in filter_e2e io_e2e render_e2e; do "$hosts/$check.sh" "$version" || return 1; done
+    for check in filter_e2e io_e2e render_e2e gui_e2e; do "$hosts/$check.sh" "$version" || return 1; done
   done
   BUILD_DIR="$build" bash "$here/scripts/package.sh" bookworm trixie &&
     "$hosts/deb_test.sh" bookworm && "$hosts/deb_test.sh" trixie

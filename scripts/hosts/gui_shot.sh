@@ -15,6 +15,11 @@
 #   --hover X,Y       moves the pointer there, then waits 1 s (keeps a submenu open on the way)
 #   --xdotool ARGS    runs xdotool with ARGS (split at spaces), then waits 2 s
 #   --shot FILE.png   takes a screenshot to FILE.png (a host path)
+#   --wait-log REGEX  waits until a line of the GUI's output matches REGEX (grep -E), then 1 s
+#   --window REGEX    waits until a window whose name matches REGEX (xdotool search --name)
+#                     shows, gives it the keyboard focus, then waits 1 s (for --xdotool key/type)
+# A wait gives up after STEP_WAIT (default 180) seconds or when the GUI has exited: the steps after it are skipped, the
+# screenshot taken, and the exit status is 1 (as when the GUI is no longer running at the end).
 # Writes OUT.png and OUT.log (the GUI's stdout and stderr).
 set -euo pipefail
 here="$(dirname "${BASH_SOURCE[0]}")"
@@ -30,7 +35,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --plugin) plugins+=("$(realpath "$2")"); shift 2 ;;
     --exclude) excludes+=("$2"); shift 2 ;;
-    --click|--hover|--xdotool) steps+=("$1" "$2"); shift 2 ;;
+    --click|--hover|--xdotool|--wait-log|--window) steps+=("$1" "$2"); shift 2 ;;
     --shot) steps+=("$1" "$(realpath -m "$2")"); shift 2 ;;
     *) echo "gui_shot.sh: unknown argument $1" >&2; exit 2 ;;
   esac
@@ -82,6 +87,16 @@ hosts_in_root env HOME="$run/home" XDG_RUNTIME_DIR="$run" LD_LIBRARY_PATH="$(dir
   sh -c 'echo $$ > "$1/pid"; exec "$2" "$3"' sh "$run" "$exe" "$run/$(basename "$mesh")" \
   > "${out%.png}.log" 2>&1 &
 gui_job=$!
+gave_up=
+gui_wait() { # WHAT CMD...: runs CMD every second until it succeeds, STEP_WAIT seconds at most
+  local what=$1 until=$((SECONDS + ${STEP_WAIT:-180}))
+  shift
+  until "$@" >/dev/null 2>&1; do
+    kill -0 "$(cat "$host_run/pid")" 2>/dev/null || { gave_up="waiting for $what: the GUI has exited"; return 1; }
+    [ "$SECONDS" -lt "$until" ] || { gave_up="waiting for $what after ${STEP_WAIT:-180} s"; return 1; }
+    sleep 1
+  done
+}
 sleep "${WAIT:-12}"
 set -- "${steps[@]}"
 while [ $# -gt 0 ]; do
@@ -90,6 +105,11 @@ while [ $# -gt 0 ]; do
     --hover) hosts_in_root xdotool mousemove "${2%,*}" "${2#*,}"; sleep 1 ;;
     --xdotool) read -r -a words <<< "$2"; hosts_in_root xdotool "${words[@]}" || true; sleep 2 ;;
     --shot) hosts_screenshot "$2" ;;
+    --wait-log) gui_wait "the GUI's output to match '$2'" grep -qE -- "$2" "${out%.png}.log" || break; sleep 1 ;;
+    --window)
+      gui_wait "a window named '$2'" hosts_in_root xdotool search --onlyvisible --name "$2" || break
+      hosts_in_root xdotool search --onlyvisible --name "$2" windowfocus --sync || true
+      sleep 1 ;;
   esac
   shift 2
 done
@@ -98,5 +118,6 @@ alive=yes
 kill -0 "$(cat "$host_run/pid")" 2>/dev/null || alive=no
 kill "$(cat "$host_run/pid")" 2>/dev/null || true
 wait "$gui_job" 2>/dev/null || true
+[ -z "$gave_up" ] || echo "[gui_shot] $version: gave up $gave_up; the steps after it skipped"
 echo "[gui_shot] $version: screenshot $out (GUI still running at the shot: $alive), log ${out%.png}.log"
-[ "$alive" = yes ]
+[ "$alive" = yes ] && [ -z "$gave_up" ]

@@ -4,7 +4,7 @@
 # outward normals, tests/render/splat_gui_lib.sh) in the host's GUI under Xvfb with our render
 # plugin (gui_shot.sh), takes a screenshot, switches Render > Shaders > Ellipse Splatting on with
 # xdotool, moves the settings panel off the view and takes another. Exit status non-zero on
-# failure.
+# failure. The menus' places per host are in gui_menus.sh.
 #
 #   scripts/hosts/render_e2e.sh 2022.02|2025.07
 #
@@ -23,15 +23,8 @@ version="${1:?usage: render_e2e.sh 2022.02|2025.07}"
 
 source "$here/lib.sh"
 source "$HOSTS_REPO/tests/render/splat_gui_lib.sh"
-# Taken from screenshots at the Xvfb screen 1280x1024 (lib.sh): the Render menu, its Shaders
-# row, a point along that row inside the submenu (so that it stays open on the way down), the
-# submenu's entry "Ellipse Splatting" (below None), the 3D view above its info box and the log
-# pane (crops).
-case "$version" in
-  2022.02) render=170,9 shaders=200,31 along=520,31 entry=560,54 view=449x510+1+70 log=380x75+466+588 ;;
-  2025.07) render=170,9 shaders=200,31 along=300,31 entry=340,54 view=408x541+1+70 log=410x64+430+594 ;;
-  *) echo "render_e2e.sh: unknown MeshLab host '$version' (2022.02 or 2025.07)" >&2; exit 2 ;;
-esac
+source "$here/gui_menus.sh"
+hosts_gui_menus "$version"
 
 out="$HOSTS_REPO/.deps/render-e2e-$version"
 mkdir -p "$out"
@@ -41,16 +34,15 @@ splat_on() { # MESH AFTER.png [STEP]...: the GUI with MESH, Ellipse Splatting sw
   local mesh=$1 shot=$2
   shift 2
   "$here/gui_shot.sh" "$version" "$shot" "$mesh" --plugin "$HOSTS_REPO/.deps/plugins-$version/librender_ellipsesplat.so" \
-    "$@" --click "$render" --click "$shaders" --hover "$along" --click "$entry" \
-    --xdotool "search --name ^Ellipse.Splatting$ windowmove %@ 900 120"
+    "$@" "${GUI_SPLAT_STEPS[@]}"
 }
 splat_on "$out/sphere.ply" "$out/after.png" --shot "$out/before.png"
 splat_on "$out/bare.ply" "$out/bare.png"
 
-read -r olive_before grey_before < <(splat_pixel_classes "$out/before.png" "$view")
-read -r olive_after grey_after < <(splat_pixel_classes "$out/after.png" "$view")
-read -r olive_bare grey_bare < <(splat_pixel_classes "$out/bare.png" "$view")
-red_log="$(convert "$out/bare.png" -crop "$log" -depth 8 txt:- |
+read -r olive_before grey_before < <(splat_pixel_classes "$out/before.png" "$GUI_VIEW")
+read -r olive_after grey_after < <(splat_pixel_classes "$out/after.png" "$GUI_VIEW")
+read -r olive_bare grey_bare < <(splat_pixel_classes "$out/bare.png" "$GUI_VIEW")
+red_log="$(convert "$out/bare.png" -crop "$GUI_LOG" -depth 8 txt:- |
   awk -F'[(),]' 'NR > 1 && $3 - $4 > 100 && $3 - $5 > 100 { red++ } END { print red + 0 }')"
 echo "[render_e2e] $version: pixels of the view: before: points $olive_before, grey $grey_before;" \
      "after: points $olive_after, splats (grey) $grey_after; without normals: points $olive_bare, grey $grey_bare," \

@@ -9,6 +9,10 @@
 #                                     red and green well above blue; the splats' default is grey;
 #                                     neither are the background gradient (blue) and the
 #                                     trackball's red axis line (red above green and blue)
+#   splat_pixel_change BEFORE AFTER CROP
+#                                     "filled emptied": pixels of the CROP drawn (olive or grey)
+#                                     in AFTER but not in BEFORE, and the other way round: the
+#                                     gaps between points that splats close, what they uncover
 
 splat_sphere_ply() {
   awk -v bare="${2:-}" 'BEGIN {
@@ -26,9 +30,24 @@ splat_sphere_ply() {
   }' > "$1"
 }
 
+# awk: the class of the pixel with channels r, g, b: 1 olive, 2 grey, 0 neither.
+splat_pixel_class_awk='function pixel_class(r, g, b) {
+  if (r - b > 25) return g - b > 25 ? 1 : 0;
+  return b - r <= 25 && r > 30 ? 2 : 0 }'
+
 splat_pixel_classes() {
-  convert "$1" -crop "$2" -depth 8 txt:- | awk -F'[(),]' 'NR > 1 {
-    r = $3; g = $4; b = $5;
-    if (r - b > 25) { if (g - b > 25) olive++ } else if (b - r <= 25 && r > 30) grey++;
-  } END { printf "%d %d\n", olive, grey }'
+  splat_pixel_rgb "$1" "$2" | awk "$splat_pixel_class_awk"'
+    { c = pixel_class($1, $2, $3); if (c == 1) olive++; else if (c == 2) grey++ }
+    END { printf "%d %d\n", olive, grey }'
+}
+
+splat_pixel_rgb() { # IMAGE CROP: "r g b", a line per pixel
+  convert "$1" -crop "$2" -depth 8 txt:- | awk -F'[(),]' 'NR > 1 { print $3, $4, $5 }'
+}
+
+splat_pixel_change() {
+  paste -d' ' <(splat_pixel_rgb "$1" "$3") <(splat_pixel_rgb "$2" "$3") | awk "$splat_pixel_class_awk"'
+    { before = pixel_class($1, $2, $3) != 0; after = pixel_class($4, $5, $6) != 0;
+      if (after && !before) filled++; else if (before && !after) emptied++ }
+    END { printf "%d %d\n", filled, emptied }'
 }
