@@ -13,8 +13,7 @@ dist="${1:?usage: clean_root.sh bookworm|trixie}"
 case "$dist" in bookworm|trixie) ;; *) echo "clean_root.sh: unknown distribution '$dist'" >&2; exit 2 ;; esac
 
 packages=(meshlab xvfb xauth xdotool imagemagick libgl1-mesa-dri)
-# trixie's meshlab misses the libraries of six of its own plugins (scripts/hosts/trixie_root.sh).
-[ "$dist" = trixie ] && packages+=(libmuparser2v5 libmpfr6 libqhull-r8.0 lib3ds-1-3 libopenctm1 libxerces-c3.2t64)
+[ "$dist" = trixie ] && packages+=("${HOSTS_TRIXIE_PLUGIN_LIBS[@]}")
 tarball="$(realpath -m "$HOSTS_REPO/.deps/clean-$dist.tar")"
 stamp="$(printf '%s\n' "$dist" "${packages[@]}" | md5sum | cut -d' ' -f1)"
 exec 7>"$tarball.lock"

@@ -2,6 +2,7 @@
 # Sourced by the scripts in scripts/hosts/ (bash). Sets:
 #   HOSTS_REPO  the repository root
 #   HOSTS_ROOT  the root's directory (default $HOSTS_REPO/.deps/trixie-root; TRIXIE_ROOT overrides)
+#   HOSTS_TRIXIE_PLUGIN_LIBS  libraries of trixie's MeshLab plugins its package misses
 # and defines:
 #   hosts_debian_uri          the Debian mirror URI of this machine's own apt sources
 #   hosts_in_root CMD...      runs CMD chrooted in the root, with /proc /dev /sys /tmp/.X11-unix
@@ -15,6 +16,11 @@
 #   hosts_quiet_settings HOME MeshLab settings in HOME that pre-answer the start-up dialogs
 
 HOSTS_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+# The shared libraries of MeshLab 2022.02's own plugins that trixie's meshlab package does not
+# depend on: muparser (filter_func), mpfr (filter_mesh_booleans), qhull_r (filter_qhull), lib3ds
+# (io_3ds), openctm (io_ctm), xerces (io_e57). Without them MeshLab opens a modal dialog listing
+# the plugins that failed at start.
+HOSTS_TRIXIE_PLUGIN_LIBS=(libmuparser2v5 libmpfr6 libqhull-r8.0 lib3ds-1-3 libopenctm1 libxerces-c3.2t64)
 HOSTS_ROOT="${TRIXIE_ROOT:-$HOSTS_REPO/.deps/trixie-root}"
 # .deps may be a symlink; bind mounts and chroot want the real path.
 mkdir -p "$(dirname "$HOSTS_ROOT")"

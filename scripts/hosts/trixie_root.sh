@@ -30,10 +30,9 @@ packages=(
   libglew-dev libeigen3-dev libgtest-dev
   libnanoflann-dev
 )
-# The shared libraries of MeshLab 2022.02's plugins that trixie's meshlab package misses:
-# muparser (filter_func), mpfr (filter_mesh_booleans), qhull_r (filter_qhull), lib3ds (io_3ds),
-# openctm (io_ctm), xerces (io_e57). Checked with ldd below.
-plugin_libs=(libmuparser2v5 libmpfr6 libqhull-r8.0 lib3ds-1-3 libopenctm1 libxerces-c3.2t64)
+# The shared libraries of MeshLab 2022.02's plugins that trixie's meshlab package misses
+# (lib.sh); checked with ldd below.
+plugin_libs=("${HOSTS_TRIXIE_PLUGIN_LIBS[@]}")
 
 stamp="$(printf '%s\n' "${packages[@]}" "${plugin_libs[@]}" | sort | md5sum | cut -d' ' -f1)"
 
