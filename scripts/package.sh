@@ -25,7 +25,9 @@ for target in "${targets[@]}"; do
     trixie)
       "$here/scripts/hosts/build_plugins.sh" 2022.02 >/dev/null
       source "$here/scripts/hosts/lib.sh"
-      HOSTS_BINDS="$here:/opt/gaussphere $(realpath "$here/.deps/plugins-2022.02"):/opt/gaussphere-build $out:/opt/packages" \
+      source "$here/scripts/hosts/host_env.sh"
+      hosts_plugins_select 2022.02
+      HOSTS_BINDS="$HOSTS_BINDS $out:/opt/packages" \
         hosts_in_root sh -c 'cd /opt/gaussphere-build && cpack -G DEB -B /opt/packages >/dev/null'
       ;;
     *) echo "package.sh: unknown target '$target' (bookworm or trixie)" >&2; exit 2 ;;
