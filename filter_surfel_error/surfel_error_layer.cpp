@@ -43,17 +43,6 @@ int CountNormals(const CMeshO &m)
     return count;
 }
 
-std::vector<const MeshModel *> Layers(const MeshDocument &md)
-{
-    std::vector<const MeshModel *> layers;
-#if __has_include(<common/ml_document/mesh_document.h>)
-    for (const MeshModel &layer : md.meshIterator()) layers.push_back(&layer);
-#else
-    for (const MeshModel *layer : md.meshList) layers.push_back(layer);
-#endif
-    return layers;
-}
-
 QString Format(const char *format, ...) __attribute__((format(printf, 1, 2)));
 QString Format(const char *format, ...)
 {
@@ -245,7 +234,7 @@ const LayerParameter kSimplifiedLayer = {
 LayerChoice DefaultLayers(const MeshDocument &md)
 {
     // Right after a resampling the current layer is its output and the input carries SurfelIndex.
-    const std::vector<const MeshModel *> layers = Layers(md);
+    const std::vector<const MeshModel *> layers = meshlab_glue::Layers(md);
     const MeshModel *current = md.mm(), *original = current;
     for (const MeshModel *layer : layers)
         if (HasSurfelIndex(*layer)) {

@@ -10,14 +10,7 @@
 
 #include <QString>
 
-// 2021.05 moved the document and the parameters into folders of their own.
-#if __has_include(<common/ml_document/mesh_document.h>)
-#include <common/ml_document/mesh_document.h>
-#include <common/parameters/rich_parameter_list.h>
-#else
-#include <common/filter_parameter/rich_parameter_list.h>
-#include <common/meshmodel.h>
-#endif
+#include <meshlab_glue/meshlab_document.h>
 
 namespace surfel_error_filter {
 

@@ -1,11 +1,6 @@
 #include "layer_surfels.h"
 
-// 2021.05 moved the mesh model into a folder of its own.
-#if __has_include(<common/ml_document/mesh_model.h>)
-#include <common/ml_document/mesh_model.h>
-#else
-#include <common/meshmodel.h>
-#endif
+#include <meshlab_glue/meshlab_document.h>
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include <algorithm>

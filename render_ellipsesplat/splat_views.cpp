@@ -3,6 +3,8 @@
 #include "layer_surfels.h"
 #include "splat_settings_panel.h"
 
+#include <meshlab_glue/meshlab_document.h>
+
 #include <common/GLExtensionsManager.h>
 #include <meshlab/glarea.h>
 
@@ -62,21 +64,6 @@ ProgressCallback statusBarProgress(GLArea *view, const QString &what)
         }
         statusBar->repaint();
     };
-}
-
-// The document's layers: 2021.05 and later hand them out by meshIterator(), 2020.09 keeps
-// pointers in its public meshList.
-std::vector<MeshModel *> layersOf(MeshDocument &document)
-{
-    std::vector<MeshModel *> layers;
-#if __has_include(<common/ml_document/mesh_document.h>)
-    for (MeshModel &layer : document.meshIterator())
-        layers.push_back(&layer);
-#else
-    for (MeshModel *layer : document.meshList)
-        layers.push_back(layer);
-#endif
-    return layers;
 }
 
 } // namespace
@@ -152,7 +139,7 @@ LogTexts SplatViews::render(MeshDocument &document, GLArea *view)
 
     std::vector<SplatDrawItem> items;
     std::set<int> liveLayers;
-    for (MeshModel *layerPointer : layersOf(document)) {
+    for (MeshModel *layerPointer : meshlab_glue::Layers(document)) {
         const MeshModel &layer = *layerPointer;
         liveLayers.insert(layer.id());
         if (!view->meshVisibilityMap[layer.id()])
