@@ -22,7 +22,8 @@
 # per mesh for the distance, default 1,000,000), OURS_WEIGHTS (the weightings of ours to
 # reconstruct, space-separated among quality, none, area; default quality: rows ours-none and
 # ours-area are added for the others), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
-# point sets and reconstructions, kept for viewing).
+# point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
+# two above; docs/results.md is then left alone).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-bench}"
@@ -42,10 +43,10 @@ bench_choose_inputs
 runs=1
 bench_present_models downstream
 if [ "$quick" = 1 ]; then
-  out="$root/bench/results/quick"
+  out="${OUT:-$root/bench/results/quick}"
   samples="${SAMPLES:-200000}"
 else
-  out="$root/bench/results"
+  out="${OUT:-$root/bench/results}"
   samples="${SAMPLES:-1000000}"
 fi
 read -r -a ours_weights <<< "${OURS_WEIGHTS:-quality}"
@@ -106,7 +107,7 @@ reconstruct_and_measure() {
 
 echo "model,input_points,method,points,weight,depth,parameters,matched,reconstruction_s,distance_s,$("$gsmeshdist" --csv-header)" > "$csv"
 bench_header ", one reconstruction per method: times are indicative" > "$header"
-echo "Distance samples per mesh: $samples." >> "$header"
+echo "Distance samples per mesh: $samples; weightings of ours: ${ours_weights[*]}." >> "$header"
 
 started=$SECONDS
 for name in "${present[@]}"; do
@@ -144,5 +145,5 @@ echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((S
 python=python3
 /usr/bin/python3 -c 'import matplotlib' 2>/dev/null && python=/usr/bin/python3
 "$python" "$root/bench/downstream_report.py" --csv "$csv" --header "$header" --out "$out"
-[ "$quick" = 1 ] || "$python" "$root/bench/results_doc.py" > /dev/null
+[ "$out" != "$root/bench/results" ] || "$python" "$root/bench/results_doc.py" > /dev/null
 echo "[downstream] done in $((SECONDS - started)) s: $out/downstream.md"
