@@ -12,6 +12,8 @@ Sources, each section stamped with the run (commit, machine, date) its figures c
                                             scripts/bench.sh (level 8, speed target, figure 7)
   bench/results/raw/control_header.txt, raw/control_{targets,error_bound}.csv
                                             scripts/bench_control.sh (output size, error bound)
+  bench/results/raw/downstream_header.txt, downstream.csv, downstream.png
+                                            scripts/bench_downstream.sh (surface reconstruction)
   bench/results/filter_speed.md             bench/filter_speed.sh (the whole filter against CGAL)
   bench/render/results.md                   scripts/bench_render.sh (rendering quality)
   bench/scale/results.md, results.csv, results_target.csv
@@ -27,6 +29,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import downstream_report  # noqa: E402
 import report  # noqa: E402  (the same formatting and row selection as the benchmark's tables)
 from report import fmt, md_table, models_in_order, num, ours_row, pick  # noqa: E402
 
@@ -213,6 +216,38 @@ def control_error_bound(rows):
 
 
 # ------------------------------------------------------------------------------------------------
+# Surface reconstruction downstream
+
+def downstream():
+    """The section's parts, or [] before the first run of scripts/bench_downstream.sh."""
+    header, table = os.path.join(RESULTS_DIR, "raw", "downstream_header.txt"), os.path.join(RESULTS_DIR, "downstream.csv")
+    if not (os.path.exists(header) and os.path.exists(table)):
+        return []
+    rows = report.read_rows(table)
+    if not rows:
+        return []
+    variants = [m for m in downstream_report.methods_present(rows) if m.startswith("ours-")]
+    parts = ["## Reconstruction downstream",
+             bench_stamp(header, "scripts/bench_downstream.sh", ["bench/results/downstream.csv"]),
+             downstream_report.intro(rows) + " Definitions: [bench/README.md](../bench/README.md); every "
+             f"model, each way: [downstream.md]({rel(os.path.join(RESULTS_DIR, 'downstream.md'))}).",
+             "On how many models ours' RMS and p99 are lower than the peer's and its max at most 10 % above:",
+             downstream_report.wins_table(rows)]
+    for variant in variants:
+        parts += [f"The same with {downstream_report.METHOD_LABEL[variant]} in place of ours:",
+                  downstream_report.wins_table(rows, variant)]
+    for stat, title in downstream_report.STATS:
+        parts += [f"{title} of the distance both ways, 10⁻³ of the diagonal (best compared method in bold):",
+                  downstream_report.overview_table(rows, stat)]
+    parts.append(downstream_report.unmatched_note(rows))
+    if os.path.exists(os.path.join(RESULTS_DIR, "downstream.png")):
+        parts += ["Each method's figures over the floor's (the whole input reconstructed the same way):",
+                  f"![Both-way RMS, p99 and max per model and method, over the floor's]"
+                  f"({rel(os.path.join(RESULTS_DIR, 'downstream.png'))})"]
+    return parts
+
+
+# ------------------------------------------------------------------------------------------------
 # Speed (table 1's timing and the speed target)
 
 def timing_table(rows):
@@ -310,6 +345,8 @@ def results_doc():
                                                  [f"bench/results/raw/{name}.csv"])]
             parts += write(report.read_rows(p))
             parts.append(f"Every run: [{name}.md]({rel(os.path.join(RESULTS_DIR, name + '.md'))}).")
+
+    parts += downstream()
 
     parts += ["## Speed", stamp8.replace("`bench/results/raw/table1.csv`",
                                          "`bench/results/raw/table1.csv`, `raw/speed_warm.csv`, `raw/speed_cold.csv`"),

@@ -23,8 +23,9 @@ bench_parse_args() {
 }
 
 # bench_build_then_run_in_xvfb CMAKE_OPTIONS... -- ARGS...: builds gsbench and the staged
-# MeshLab, then re-runs the calling script inside one virtual display (meshlabserver needs
-# one); a build error stays visible, outside xvfb-run.
+# MeshLab (and the targets in `bench_extra_targets`, if the caller sets it), then re-runs the
+# calling script inside one virtual display (meshlabserver needs one); a build error stays
+# visible, outside xvfb-run.
 bench_build_then_run_in_xvfb() {
   local options=()
   while [ $# -gt 0 ] && [ "$1" != -- ]; do options+=("$1"); shift; done
@@ -33,7 +34,7 @@ bench_build_then_run_in_xvfb() {
   if [ ! -f "$build/CMakeCache.txt" ]; then
     cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${options[@]}"
   fi
-  cmake --build "$build" --target gsbench stage -j "$jobs"
+  cmake --build "$build" --target gsbench stage ${bench_extra_targets[@]+"${bench_extra_targets[@]}"} -j "$jobs"
   GSBENCH_IN_XVFB=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$@"
 }
 

@@ -40,6 +40,14 @@
 //   gsbench run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]
 //               [--variation V] [--cell C] [--target-count C] [--max-error E]
 //     The process measured by compare: load, one method, save, nothing else.
+//
+//   gsbench export INPUT.ply --count N --out PREFIX [--methods LIST] [--meshlabserver PATH]
+//                  [--work DIR] [--tolerance F] [--csv OUT.csv]
+//     Matches every peer in LIST (default cgal-hierarchy,cgal-grid,meshlab-poisson) to N points
+//     (+- F, default 0.02) by compare's searches and writes its output, input points with their
+//     normals, to PREFIX_METHOD.ply; appends one CSV row per peer (count, parameters, whether
+//     it matched) to OUT.csv (default stdout). The downstream benchmark reconstructs surfaces
+//     from these files (scripts/bench_downstream.sh).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -323,6 +331,19 @@ void Announce(const Row &r)
 }
 
 // ---------------------------------------------------------------------------------------------
+// Peers' parameters as the tables show them (lengths over the input's bounding-box diagonal)
+
+std::string GridParameters(const CountMatch &m, double diagonal)
+{
+    return "cell=" + Number(m.parameter / diagonal, 4) + "xdiag";
+}
+
+std::string PoissonParameters(const CountMatch &m, double diagonal)
+{
+    return "radius=" + Number(m.parameter / diagonal, 4) + "xdiag";
+}
+
+// ---------------------------------------------------------------------------------------------
 // compare
 
 struct ProcessFigures
@@ -533,7 +554,7 @@ int Compare(const std::string &inputPath, const Options &opt)
         }
         if (wanted("cgal-grid")) {
             const CountMatch m = MatchGrid(cgal, diagonal, target, tolerance);
-            peers.push_back({"cgal-grid", "cell=" + Number(m.parameter / diagonal, 4) + "xdiag", m,
+            peers.push_back({"cgal-grid", GridParameters(m, diagonal), m,
                              [points = &cgal, m](double *s) { return points->Grid(m.parameter, s); },
                              {"--cell", Number(m.parameter, 17)}});
         }
@@ -586,7 +607,7 @@ int Compare(const std::string &inputPath, const Options &opt)
         const MeshLabPoisson poisson(meshlabserver, inputPath, diagonal, work);
         const CountMatch m = poisson.Match(target, tolerance);
         Row r = newRow("meshlab-poisson");
-        r.parameters = "radius=" + Number(m.parameter / diagonal, 4) + "xdiag";
+        r.parameters = PoissonParameters(m, diagonal);
         r.matched = m.withinTolerance;
         r.evaluations = m.evaluations;
         const std::string output = outputPath("meshlab-poisson");
@@ -656,6 +677,93 @@ int RunOne(const std::string &method, const std::string &inputPath, const std::s
     return 0;
 }
 
+// ---------------------------------------------------------------------------------------------
+// export: the matched peers' point sets as files
+
+/// One peer's output matched to the requested count, as `export` reports it.
+struct ExportedPeer
+{
+    std::string method, parameters;
+    CountMatch match;
+    int points = 0;
+};
+
+int Export(const std::string &inputPath, const Options &opt)
+{
+    const int target = opt.Int("--count", 0);
+    const std::string prefix = opt.Get("--out", "");
+    const std::vector<std::string> methods = Split(opt.Get("--methods", "cgal-hierarchy,cgal-grid,meshlab-poisson"));
+    const std::string meshlabserver = opt.Get("--meshlabserver", "");
+    const std::string work = opt.Get("--work", "/tmp/gsbench");
+    const double tolerance = opt.Real("--tolerance", 0.02);
+    const std::string csv = opt.Get("--csv", "-");
+    opt.RejectUnused();
+    if (target <= 0) throw std::invalid_argument("export needs --count N > 0");
+    if (prefix.empty()) throw std::invalid_argument("export needs --out PREFIX");
+    mkdir(work.c_str(), 0755);
+
+    PointMesh input;
+    LoadPointSet(inputPath, input);
+    const double diagonal = input.bbox.Diag();
+    std::unique_ptr<const CgalPointSet> cgal;
+    auto cgalPoints = [&]() -> const CgalPointSet & {
+        if (!cgal) cgal.reset(new CgalPointSet(input));
+        return *cgal;
+    };
+    auto saveSubset = [&](const std::vector<int> &kept, const std::string &path) {
+        PointMesh output;
+        CopySubset(input, kept, output);
+        SavePointSet(output, path, false);
+        return output.vn;
+    };
+
+    std::vector<ExportedPeer> exported;
+    for (const std::string &method : methods) {
+        const std::string path = prefix + "_" + method + ".ply";
+        ExportedPeer e;
+        e.method = method;
+        if (method == "cgal-hierarchy") {
+            const HierarchyMatch m = MatchHierarchy(cgalPoints(), target, tolerance);
+            e.parameters = m.param.ToString();
+            e.match = m.match;
+            e.points = saveSubset(cgalPoints().Hierarchy(m.param), path);
+        } else if (method == "cgal-grid") {
+            e.match = MatchGrid(cgalPoints(), diagonal, target, tolerance);
+            e.parameters = GridParameters(e.match, diagonal);
+            e.points = saveSubset(cgalPoints().Grid(e.match.parameter), path);
+        } else if (method == "meshlab-poisson") {
+            if (meshlabserver.empty()) throw std::invalid_argument("meshlab-poisson needs --meshlabserver");
+            const MeshLabPoisson poisson(meshlabserver, inputPath, diagonal, work);
+            e.match = poisson.Match(target, tolerance);
+            e.parameters = PoissonParameters(e.match, diagonal);
+            poisson.Run(e.match.parameter, path);
+            e.points = PlyVertexCount(path);
+        } else {
+            throw std::invalid_argument("export: unknown method " + method);
+        }
+        std::fprintf(stderr, "  %-16s %8d pts (target %d) %s%s -> %s\n", method.c_str(), e.points, target,
+                     e.parameters.c_str(), e.match.withinTolerance ? "" : ", NOT matched", path.c_str());
+        exported.push_back(e);
+    }
+
+    std::ostringstream rows;
+    for (const ExportedPeer &e : exported)
+        rows << e.method << ',' << e.points << ',' << target << ',' << e.parameters << ','
+             << (e.match.withinTolerance ? "yes" : "no") << ',' << e.match.evaluations << '\n';
+    const char *header = "method,points,target,parameters,matched,match_evaluations\n";
+    if (csv.empty() || csv == "-") {
+        std::printf("%s%s", header, rows.str().c_str());
+        return 0;
+    }
+    struct stat st;
+    const bool fresh = stat(csv.c_str(), &st) != 0 || st.st_size == 0;
+    std::ofstream out(csv, std::ios::app);
+    if (fresh) out << header;
+    out << rows.str();
+    if (!out) throw std::runtime_error("cannot write " + csv);
+    return 0;
+}
+
 int Usage(const char *program)
 {
     std::fprintf(stderr,
@@ -664,8 +772,10 @@ int Usage(const char *program)
                  "                  [--tolerance F] [--no-process] [--trim-heap] [--target-percent P] [--max-error E]\n"
                  "       %s run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]\n"
                  "                  [--variation V] [--cell C] [--target-count C] [--max-error E]\n"
+                 "       %s export INPUT.ply --count N --out PREFIX [--methods LIST] [--meshlabserver PATH]\n"
+                 "                  [--work DIR] [--tolerance F] [--csv OUT.csv]\n"
                  "(see the comment at the top of bench/src/main.cpp)\n",
-                 program, program);
+                 program, program, program);
     return 2;
 }
 
@@ -677,6 +787,7 @@ int main(int argc, char **argv)
         const std::string command = argc > 1 ? argv[1] : "";
         if (command == "compare" && argc >= 3) return Compare(argv[2], Options(argc, argv, 3));
         if (command == "run" && argc >= 5) return RunOne(argv[2], argv[3], argv[4], Options(argc, argv, 5));
+        if (command == "export" && argc >= 3) return Export(argv[2], Options(argc, argv, 3));
         return Usage(argv[0]);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "gsbench: %s\n", e.what());
