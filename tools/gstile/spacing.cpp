@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <nanoflann.hpp>
+#include "point_tree.h"
 
 namespace gstile {
 
@@ -19,29 +19,13 @@ void PointSample::Add(const float p[3])
     if (slot < kSize) points_[std::size_t(slot)] = point;
 }
 
-namespace {
-
-struct SampleCloud
-{
-    const std::vector<std::array<float, 3>> &points;
-    std::size_t kdtree_get_point_count() const { return points.size(); }
-    float kdtree_get_pt(std::size_t i, std::size_t axis) const { return points[i][axis]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box &) const { return false; }
-};
-
-typedef nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, SampleCloud>, SampleCloud, 3>
-    SampleTree;
-
-} // namespace
-
 double EstimateSpacing(const PointSample &sample)
 {
     const std::size_t m = sample.Points().size();
     const std::size_t j = 8;
     if (m <= j) return 0;
-    const SampleCloud cloud{sample.Points()};
-    SampleTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    const PointCloud cloud{sample.Points()};
+    PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     tree.buildIndex();
     std::vector<double> local;
     local.reserve(m);
