@@ -74,7 +74,7 @@ protected:
     {
         dir_ = ::testing::TempDir() + "gstile_bunny_" + ::testing::UnitTest::GetInstance()->current_test_info()->name();
         SplitOptions options;
-        options.tilePoints = 12000;
+        options.tilePoints = 20000;
         std::string error;
         ASSERT_TRUE(Split(kBunny, dir_, options, manifest_, [](const std::string &) {}, error)) << error;
         ASSERT_GE(manifest_.tiles.size(), 4u);

@@ -169,12 +169,18 @@ bool Split(const std::string &input, const std::string &dir, const SplitOptions 
     if (!SetTileOptions(options.param, manifest, error) || !PrepareDirectory(dir, error) ||
         !WriteTiles(input, dir, options, manifest, progress, error))
         return false;
-    std::uint64_t largest = 0;
-    for (const TileEntry &t : manifest.tiles) largest = std::max(largest, t.corePoints + t.haloPoints);
-    char line[128];
-    std::snprintf(line, sizeof line, "[split] %zu tiles with points, the fullest %.2f M points with its halo",
-                  manifest.tiles.size(), largest / 1e6);
+    std::uint64_t largest = 0, halos = 0;
+    for (const TileEntry &t : manifest.tiles) {
+        largest = std::max(largest, t.corePoints + t.haloPoints);
+        halos += t.haloPoints;
+    }
+    char line[160];
+    std::snprintf(line, sizeof line, "[split] %zu tiles with points, the fullest %.2f M points with its halo; halos %.2f M",
+                  manifest.tiles.size(), largest / 1e6, halos / 1e6);
     progress(line);
+    if (halos > manifest.points)
+        progress("[split] warning: the halos hold more points than the cores: most of the work resamples halos; "
+                 "raise --tile-points");
     return WriteManifest(dir, manifest, error);
 }
 
