@@ -21,7 +21,7 @@ server=(xvfb-run -a -s "-screen 0 1280x1024x24" "$build/stage/bin/meshlabserver"
 # .surfel keeps the ellipse axes; the PLY copy (normals, radii) opens in any viewer.
 "${server[@]}" -i "$input" -s "$script" -o "$out/${name}_resampled.surfel" > "$out/${name}_resampled.log" 2>&1 ||
   { echo "meshlabserver failed, see $out/${name}_resampled.log" >&2; exit 1; }
-"${server[@]}" -i "$out/${name}_resampled.surfel" -o "$out/${name}_resampled.ply" -m vn vr >/dev/null 2>&1
+"${server[@]}" -i "$out/${name}_resampled.surfel" -o "$out/${name}_resampled.ply" -m vn vq vr >/dev/null 2>&1
 sed -n "s/.*LOG: [0-9] //p" "$out/${name}_resampled.log"
 # The picture: one camera for the three panels (splat_render frames each input alike).
 render() { xvfb-run -a -s "-screen 0 1280x1024x24" "$build/tools/splat_render/splat_render" "$@" --width 480 --height 480 >/dev/null 2>&1; }
@@ -34,6 +34,6 @@ render "$input" -o "$out/${name}_input_points.png" --mode points &&
 rm -f "$out/${name}_input_points.png" "$out/${name}_surfel_points.png" "$out/${name}_splats.png"
 echo "Results:"
 echo "  $out/${name}_resampled.surfel  (surfels with ellipse axes; open in MeshLab with the plugins installed)"
-echo "  $out/${name}_resampled.ply     (positions fitted to the blend, normals, radii)"
+echo "  $out/${name}_resampled.ply     (positions fitted to the blend, normals, represented points as quality, radii)"
 echo "  $out/${name}_resampled.log     (meshlabserver log)"
 echo "  $out/${name}_resampled.png     (input points | surfels as points | three-pass ellipse splats)"

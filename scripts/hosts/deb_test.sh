@@ -9,7 +9,7 @@
 # Checks:
 #   1. dpkg -i succeeds: the package's dependencies, the exact meshlab version among them, are
 #      met by the distribution's packages;
-#   2. gsresample resamples the packaged bunny (9,618 surfels);
+#   2. gsresample resamples the packaged bunny (HOSTS_BUNNY_SURFELS surfels, lib.sh);
 #   3. the installed MeshLab runs the installed filter on the bunny: on bookworm meshlabserver
 #      with the packaged resample_level8.mlx, on trixie (no meshlabserver) filter_run, which loads
 #      the installed plugins through MeshLab's own PluginManager (built by build_plugins.sh 2022.02);
@@ -23,7 +23,7 @@ dist="${1:?usage: deb_test.sh bookworm|trixie [PACKAGE.deb]}"
 out="$HOSTS_REPO/out/packages"
 deb="${2:-$(ls -t "$out"/meshlab-gaussphere_*~"$dist"_amd64.deb 2>/dev/null | head -1)}"
 [ -f "$deb" ] || { echo "[deb_test] no package for $dist: run scripts/package.sh $dist" >&2; exit 1; }
-expected="${EXPECTED_SURFELS:-9618}"
+expected="$HOSTS_BUNNY_SURFELS"
 
 tarball="$("$here/clean_root.sh" "$dist")"
 

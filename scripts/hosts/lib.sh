@@ -3,6 +3,7 @@
 #   HOSTS_REPO  the repository root
 #   HOSTS_ROOT  the root's directory (default $HOSTS_REPO/.deps/trixie-root; TRIXIE_ROOT overrides)
 #   HOSTS_TRIXIE_PLUGIN_LIBS  libraries of trixie's MeshLab plugins its package misses
+#   HOSTS_BUNNY_SURFELS       the surfel count every host's filter gives for the shipped bunny
 # and defines:
 #   hosts_debian_uri          the Debian mirror URI of this machine's own apt sources
 #   hosts_in_root CMD...      runs CMD chrooted in the root, with /proc /dev /sys /tmp/.X11-unix
@@ -22,6 +23,9 @@ HOSTS_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 # the plugins that failed at start.
 HOSTS_TRIXIE_PLUGIN_LIBS=(libmuparser2v5 libmpfr6 libqhull-r8.0 lib3ds-1-3 libopenctm1 libxerces-c3.2t64)
 HOSTS_ROOT="${TRIXIE_ROOT:-$HOSTS_REPO/.deps/trixie-root}"
+# What gsresample gives for sample_data/bunny.ply at the defaults: the algorithm is
+# deterministic and the same code in every plugin, so every host must give this count.
+HOSTS_BUNNY_SURFELS="${EXPECTED_SURFELS:-9701}"
 # .deps may be a symlink; bind mounts and chroot want the real path.
 mkdir -p "$(dirname "$HOSTS_ROOT")"
 HOSTS_ROOT="$(realpath -m "$HOSTS_ROOT")"

@@ -140,22 +140,26 @@ double WorstSplittableElongation(const gstest::PointSet &s, const ResamplingResu
 
 // Planes and strips: normalization splits elongated clusters until every splittable one
 // satisfies lambda1 / lambda2 <= threshold.
-// The paper's stopping rule (resampling.h): normalization stops after the first round
-// that changes the count by less than 1 % of the points. On this 3,600-point plane the
-// first round already does, so a few elongated clusters may remain; the fixed-point test
-// below shows they go once the rule is disabled.
-TEST(ResamplingPipeline, NormalizationStopsWhenTheCountSettles)
+// Normalization rounds stop when one splits nothing (cluster_normalization.h). A 300 x 3
+// strip is one naive cluster without a depth limit; each round halves its elongated pieces,
+// and the rounds end within the cap with no splittable piece elongated. One round alone
+// leaves two pieces.
+TEST(ResamplingPipeline, NormalizationStopsWhenARoundSplitsNothing)
 {
-    const gstest::PointSet s = gstest::PlaneGrid(60, 60, 0.1f);
+    const gstest::PointSet s = gstest::PlaneGrid(300, 3, 0.1f);
     ResamplingParams p;
     p.tuning.maxClusterSize = 0; // shape alone decides the splits here
+    p.propagationDepth = 0;
+    p.tuning.maxIterations = 100;
     const ResamplingResult settled = gstest::Resample(s, p);
     gstest::ExpectValidResult(settled, s);
-    EXPECT_EQ(settled.stats.iterations, 1);
-    p.tuning.convergenceFraction = 0;
-    const ResamplingResult fixedPoint = gstest::Resample(s, p);
-    EXPECT_GT(fixedPoint.stats.iterations, 1);
-    EXPECT_LT(std::abs(int(fixedPoint.surfels.size()) - int(settled.surfels.size())), int(0.01 * 3600) + 1);
+    EXPECT_GT(settled.stats.iterations, 3);
+    EXPECT_LT(settled.stats.iterations, p.tuning.maxIterations);
+    EXPECT_LE(WorstSplittableElongation(s, settled, p.tuning.minSplitSize), p.normalizationThreshold);
+    p.tuning.maxIterations = 1;
+    const ResamplingResult oneRound = gstest::Resample(s, p);
+    EXPECT_EQ(oneRound.stats.iterations, 1);
+    EXPECT_EQ(oneRound.surfels.size(), 2u);
 }
 
 TEST(ResamplingPipeline, StripClustersAreCompact)
@@ -170,15 +174,15 @@ TEST(ResamplingPipeline, StripClustersAreCompact)
     EXPECT_GE(r.surfels.size(), 300u / 8);
 }
 
-// Without a depth limit the naive clustering of a strip is one cluster; with the early
-// stop disabled (convergenceFraction = 0: rounds run until maxIterations) normalization
-// alone cuts it, and the plane, into compact pieces.
+// Without a depth limit the naive clustering of a strip is one cluster; normalization rounds
+// run until none splits (enough of them allowed) and alone cut it, and the plane, into compact
+// pieces.
 TEST(ResamplingPipeline, ClustersAreCompactWhenNormalizationRunsToAFixedPoint)
 {
     for (const gstest::PointSet &s : {gstest::PlaneGrid(60, 60, 0.1f), gstest::PlaneGrid(300, 3, 0.1f)}) {
         ResamplingParams p;
         p.propagationDepth = 0;
-        p.tuning.convergenceFraction = 0;
+        p.tuning.maxIterations = 100;
         const ResamplingResult r = gstest::Resample(s, p);
         gstest::ExpectValidResult(r, s);
         EXPECT_EQ(r.stats.naiveCount, 1);

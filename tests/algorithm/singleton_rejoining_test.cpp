@@ -9,6 +9,7 @@
 #include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 #include <vcg_ext/gaussphere/clustering/index_propagation.h>
 #include <vcg_ext/gaussphere/clustering/singleton_rejoining.h>
+#include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
 
 #include "test_support.h"
 
@@ -134,29 +135,44 @@ TEST(SingletonRejoining, TiesGoToTheSmallerLabel)
     EXPECT_EQ(c.label[0], 1);
 }
 
+/// A noisy sphere, its neighbours and its naive clustering: many singletons, many splits.
+struct NoisySphere
+{
+    gstest::PointSet s = gstest::FibonacciSphere(20000);
+    AdaptiveNeighborParams ap;
+    NeighborGraph g;
+    Clustering naive;
+
+    NoisySphere()
+    {
+        std::mt19937 rng(9);
+        std::normal_distribution<float> noise(0.f, 0.08f);
+        for (P3 &n : s.normals) {
+            n += P3(noise(rng), noise(rng), noise(rng));
+            n.Normalize();
+        }
+        const GaussianSphere sphere(16);
+        IndexArray triangle;
+        for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
+        const PointGrid tree(s.points);
+        ap.coneChord = sphere.PaperMaxEdgeLength();
+        g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
+        IndexPropagationParams pp;
+        pp.inscribedRadius = sphere.PaperMaxEdgeLength() / (2 * std::sqrt(3.0));
+        naive.label.assign(s.Size(), 0);
+        PropagateIndices(s.normals, triangle, g, tree.Order(), pp, naive);
+    }
+};
+
 // On a noisy sphere (many singletons after propagation) one and two threads give the
 // same labels, and so do passes run one at a time.
 TEST(SingletonRejoining, IndependentOfThreadCountAndOfPassBookkeeping)
 {
-    gstest::PointSet s = gstest::FibonacciSphere(20000);
-    std::mt19937 rng(9);
-    std::normal_distribution<float> noise(0.f, 0.08f);
-    for (P3 &n : s.normals) {
-        n += P3(noise(rng), noise(rng), noise(rng));
-        n.Normalize();
-    }
-    const GaussianSphere sphere(16);
-    IndexArray triangle;
-    for (const P3 &n : s.normals) triangle.push_back(sphere.TriangleOf(n));
-    const PointGrid tree(s.points);
-    AdaptiveNeighborParams ap;
-    ap.coneChord = sphere.PaperMaxEdgeLength();
-    const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
-    IndexPropagationParams pp;
-    pp.inscribedRadius = sphere.PaperMaxEdgeLength() / (2 * std::sqrt(3.0));
-    Clustering naive;
-    naive.label.assign(s.Size(), 0);
-    PropagateIndices(s.normals, triangle, g, tree.Order(), pp, naive);
+    const NoisySphere f;
+    const gstest::PointSet &s = f.s;
+    const NeighborGraph &g = f.g;
+    const AdaptiveNeighborParams &ap = f.ap;
+    const Clustering &naive = f.naive;
 
     Clustering one = naive, two = naive;
     int joinedOne, joinedTwo;
@@ -189,6 +205,35 @@ TEST(SingletonRejoining, IndependentOfThreadCountAndOfPassBookkeeping)
         bool neighbourHasIt = false;
         for (const int *q = g.begin(i); q != g.end(i); ++q) neighbourHasIt |= *q != i && one.label[*q] == one.label[i];
         EXPECT_TRUE(neighbourHasIt) << "point " << i << " joined a cluster outside its neighbourhood";
+    }
+}
+
+// Normalization rounds examine only the clusters the last round changed, and rejoining looks
+// only at singletons next to a change: the same labels, round by round, as rounds that
+// examine every cluster and every singleton.
+TEST(SingletonRejoining, NormalizationRoundsGiveTheLabelsOfFullRounds)
+{
+    const NoisySphere f;
+    Clustering start = f.naive;
+    RejoinSingletons(f.s.normals, f.g, f.ap.coneChord, start);
+    start.Compact();
+    ClusterNormalizationParams param;
+    param.minSplitSize = 4;
+    param.maxClusterSize = 12;
+    for (int rounds = 1; rounds <= 4; ++rounds) {
+        Clustering incremental = start, full = start;
+        const int ran = NormalizeClusters(f.s.points, f.s.normals, f.g, param, f.ap.coneChord, rounds, incremental, [] {});
+        int splitting = 0;
+        for (int r = 0; r < rounds; ++r) {
+            if (SplitElongatedClusters(f.s.points, param, full) == 0) break;
+            ++splitting;
+            RejoinSingletons(f.s.normals, f.g, f.ap.coneChord, full);
+            full.Compact();
+        }
+        EXPECT_EQ(ran, splitting);
+        if (rounds == 4) EXPECT_GE(ran, 3) << "the fixture must need several rounds";
+        EXPECT_EQ(incremental.clusterCount, full.clusterCount) << rounds << " round(s)";
+        EXPECT_EQ(incremental.label, full.label) << rounds << " round(s)";
     }
 }
 

@@ -80,8 +80,11 @@ TEST(UnitScale, AnyScaleGivesTheSameCount)
     for (double factor : {1e-30, 1e-7, 3e5, 1e30, 6e37}) {
         const ResamplingResult scaled = gstest::Resample(Scaled(sphere, factor));
         ExpectAllFinite(scaled);
-        // Rounding the scaled coordinates to float moves a point by at most 2^-24 of itself.
-        EXPECT_NEAR(double(scaled.surfels.size()), double(unit.surfels.size()), 0.01 * unit.surfels.size())
+        // Not the same surfels: the point order follows a curve fixed in space (morton_order.h),
+        // and a model scaled by anything but a power of two meets it elsewhere. Another order
+        // of the same points gives as many surfels, as good, up to the variation of the
+        // clustering (about 1 % of these 1,000 surfels).
+        EXPECT_NEAR(double(scaled.surfels.size()), double(unit.surfels.size()), 0.02 * unit.surfels.size())
             << "scale " << factor;
         EXPECT_NEAR(scaled.stats.normalErrorRms, unit.stats.normalErrorRms, 0.02 * unit.stats.normalErrorRms);
     }

@@ -6,8 +6,8 @@
 //   1. adaptive neighbours (k nearest inside the cone of normals)  neighbors/
 //   2. naive sampling by index propagation                         clustering/index_propagation.h
 //      and singleton rejoining                                      clustering/singleton_rejoining.h
-//   3. cluster normalization + singleton rejoining, iterated until
-//      the cluster count changes by less than a fraction of N      clustering/cluster_normalization.h
+//   3. cluster normalization + singleton rejoining, in rounds until
+//      a round splits nothing                                       clustering/cluster_normalization.h
 //   4. one elliptical surfel per cluster                            surfels/surfel_generation.h
 //   size control beyond the paper, one mode a run (SizeControl):    size_control/
 //      Level: the clustering of step 3 as it is
@@ -50,6 +50,7 @@
 #include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 #include <vcg_ext/gaussphere/clustering/index_propagation.h>
 #include <vcg_ext/gaussphere/size_control/max_error_exchange.h>
+#include <vcg_ext/gaussphere/neighbors/morton_order.h>
 #include <vcg_ext/gaussphere/neighbors/point_grid.h>
 #include <vcg_ext/gaussphere/resampling_params.h>
 #include <vcg_ext/gaussphere/clustering/singleton_rejoining.h>
@@ -259,22 +260,23 @@ void ReadPoints(const MeshType &mesh, Run &run)
     run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
 }
 
-/// Step 1: the points renumbered along the grid's Morton order (points close in space become
-/// close in memory, which makes every later pass cache-friendly; the order is also the seed
-/// order of index propagation), then their k nearest neighbours and crease points.
+/// Step 1: the points renumbered along the Morton curve of their own coordinates
+/// (morton_order.h: points close in space become close in memory, which makes every later pass
+/// cache-friendly; the order is also the seed order of index propagation and breaks every tie,
+/// and it is the same for a part of an input whatever else the input holds), then their k
+/// nearest neighbours and crease points.
 inline void FindNeighbors(Run &run)
 {
     const char *sorting = "Gaussian sphere resampling: sorting the points in space";
     Report(run.cb, 1, sorting);
+    const IndexArray order = MortonOrder(run.points);
+    Report(run.cb, 1, sorting);
+    Permute(order, run.points);
+    Permute(order, run.normals);
+    Permute(order, run.source);
     vcg::CallBackPos *cb = run.cb;
     std::unique_ptr<PointGrid> grid(
         new PointGrid(run.points, PointGrid::kPointsPerCell, [cb, sorting]() { Report(cb, 1, sorting); }));
-    const IndexArray &spatial = grid->Order();
-    Report(run.cb, 1, sorting);
-    Permute(spatial, run.points);
-    Permute(spatial, run.normals);
-    Permute(spatial, run.source);
-    grid->PointsRenumberedToOrder();
     Report(run.cb, 2, "Gaussian sphere resampling: neighbour search");
     AdaptiveNeighborParams neighborParam;
     neighborParam.k = run.param.neighborCount;
@@ -342,17 +344,8 @@ inline LevelClustering ClusterAtLevel(Run &run, int level)
         Report(run.cb, percent, "Gaussian sphere resampling: cluster normalization");
     };
     report();
-    const double settled = run.param.tuning.convergenceFraction * n;
-    for (int round = 0; round < run.param.tuning.maxIterations; ++round) {
-        const int before = c.clusterCount;
-        SplitElongatedClusters(run.points, run.normalization, c);
-        report();
-        RejoinSingletons(run.normals, run.graph, inscribedRadius, c);
-        report();
-        c.Compact();
-        ++r.iterations;
-        if (std::abs(c.clusterCount - before) < settled) break;
-    }
+    r.iterations = NormalizeClusters(run.points, run.normals, run.graph, run.normalization, inscribedRadius,
+                                     run.param.tuning.maxIterations, c, report);
     ++run.stats.levelsTried;
     run.stats.secondsNormalization += run.timer.Lap();
     return r;

@@ -33,8 +33,7 @@ struct ResamplingTuning
     int creaseClusterSize = 5;     ///< maxClusterSize of clusters at a crease: wide surfels round edges off (0 = off)
     int creaseMinSplitSize = 4;    ///< minSplitSize of clusters at a crease
     float creaseBlendScale = 0.65f; ///< blend width of the surfels around creases, in (0, 1] (crease_blend.h)
-    int maxIterations = 10;        ///< cap on the rounds of normalization and rejoining
-    double convergenceFraction = 0.01; ///< rounds stop when the count changes by less than this x N (the paper's rule)
+    int maxIterations = 6;         ///< rounds of normalization and rejoining at most (they stop when nothing splits)
     double coverageMargin = 0.75;  ///< ellipse growth, in local sample spacings, so that neighbours overlap
     double mergeWithin = 1.15;     ///< TargetCount: merge down from a level giving at most this x the target
 
@@ -46,7 +45,6 @@ struct ResamplingTuning
         if (creaseMinSplitSize < 0) return "CreaseMinSplitSize must not be negative";
         if (!(creaseBlendScale > 0 && creaseBlendScale <= 1)) return "CreaseBlendScale must be above 0 and at most 1";
         if (maxIterations < 0) return "MaxIterations must not be negative";
-        if (!(convergenceFraction >= 0)) return "ConvergenceFraction must not be negative";
         if (!(coverageMargin >= 0)) return "CoverageMargin must not be negative";
         if (!(mergeWithin >= 1)) return "MergeWithin must be at least 1";
         return std::string();

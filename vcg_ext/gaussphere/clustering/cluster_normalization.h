@@ -11,6 +11,12 @@
 // `creaseClusterSize` and `creaseMinSplitSize` (used where smaller than the general ones):
 // beside a crease a wide surfel rounds the edge off, and an elongated one lying along the
 // edge reaches far across it.
+//
+// The paper repeats normalization and rejoining until the count changes by less than 1 % of
+// the points. That rule counts the whole input, so the same model would be normalized
+// differently beside other data, or in tiles; here rounds run until one splits nothing, at
+// most maxRounds (the resampler's 6: on its benchmark models the count no longer changes
+// after that, and the later rounds only split clusters whose lone split-off point rejoins them).
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
@@ -21,6 +27,7 @@
 #include <vcg/space/point3.h>
 
 #include <vcg_ext/gaussphere/clustering/clustering.h>
+#include <vcg_ext/gaussphere/clustering/singleton_rejoining.h>
 #include <vcg_ext/gaussphere/support/flat_vector.h>
 #include <vcg_ext/gaussphere/clustering/principal_axes.h>
 
@@ -38,10 +45,15 @@ struct ClusterNormalizationParams
     int creaseMinSplitSize = 4;  ///< minSplitSize of clusters holding a crease point
 };
 
-/// One splitting pass over all clusters. Returns the number of clusters split.
-/// Deterministic: new labels are numbered in the order of the clusters they come from.
+/// One splitting pass over the clusters flagged in `examine` (every cluster when null; a
+/// cluster's decision depends on its members alone, so one unchanged since it was last
+/// examined need not be examined again). Returns the number of clusters split; `changed`, if
+/// given, becomes a flag per cluster of the new count: the clusters split and those made of
+/// their halves. Deterministic: new labels are numbered in the order of the clusters they come
+/// from.
 inline int SplitElongatedClusters(const PointArray &points, const ClusterNormalizationParams &param,
-                                  Clustering &clusters)
+                                  Clustering &clusters, const FlatVector<char> *examine = nullptr,
+                                  FlatVector<char> *changed = nullptr)
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
@@ -55,6 +67,7 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
 #pragma omp parallel for schedule(dynamic, 256)
     for (int c = 0; c < count; ++c) {
         planeOf[c] = -1;
+        if (examine && !(*examine)[size_t(c)]) continue;
         const int size = members.Size(c);
         const bool atCrease = param.creasePoints && members.AnyFlagged(c, *param.creasePoints);
         // At a crease the limits only tighten: the smaller cap, the smaller never-split size.
@@ -92,8 +105,42 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
         if (moved == 0) continue; // every point on the plane: nothing to split
         ++clusters.clusterCount;
         ++split;
+        planeOf[c] = -2; // split
+    }
+    if (changed) {
+        changed->assign(size_t(clusters.clusterCount), 0);
+        for (int c = 0; c < count; ++c) (*changed)[size_t(c)] = planeOf[c] == -2;
+        std::fill(changed->begin() + count, changed->end(), char(1));
     }
     return split;
+}
+
+/// Step 3: rounds of a splitting pass and singleton rejoining (within `rejoinChord`, as
+/// RejoinSingletons), until a round splits nothing or `maxRounds` rounds ran; step() is called
+/// after each pass. After the first round only the clusters the last one changed are examined
+/// again: the same result as examining all of them. The stopping rule looks at no count of the
+/// whole input, so a part of an input is normalized alike whatever else the input holds.
+/// Precondition: the singletons of `clusters` found no cluster in a last rejoining (as after
+/// naive sampling). Returns the rounds that split a cluster.
+template <class Step>
+int NormalizeClusters(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
+                      const ClusterNormalizationParams &param, double rejoinChord, int maxRounds, Clustering &clusters,
+                      const Step &step)
+{
+    FlatVector<char> examine, changed;
+    int rounds = 0;
+    for (; rounds < maxRounds; ++rounds) {
+        const int split = SplitElongatedClusters(points, param, clusters, rounds == 0 ? nullptr : &examine, &changed);
+        step();
+        if (split == 0) break;
+        RejoinSingletons(normals, graph, rejoinChord, clusters, kRejoinMaxPasses, &changed);
+        step();
+        const IndexArray renumbered = clusters.Compact();
+        examine.assign(size_t(clusters.clusterCount), 0);
+        for (size_t old = 0; old < renumbered.size(); ++old)
+            if (renumbered[old] >= 0 && changed[old]) examine[size_t(renumbered[old])] = 1;
+    }
+    return rounds;
 }
 
 } // namespace gaussphere

@@ -32,6 +32,9 @@ namespace gaussphere {
 constexpr size_t kRejoinParallelMin = 512;
 /// How many singletons ahead a pass fetches the next one's data.
 constexpr int kRejoinPrefetchAhead = 8;
+/// Passes of rejoining at most: a pass only moves singletons next to a cluster that changed in
+/// the one before, so passes stop long before this on real inputs.
+constexpr int kRejoinMaxPasses = 32;
 
 namespace detail {
 
@@ -49,12 +52,13 @@ inline void SumClusterNormals(const PointArray &normals, const ClusterMembers &b
 }
 
 /// One pass's decisions: target[s] is the cluster singletons[s] joins, -1 for none, taken
-/// against the clustering as it stands at the start of the pass. After the first pass only a
-/// singleton next to a `changed` cluster is looked at again.
+/// against the clustering as it stands at the start of the pass. With `onlyNearChanges`, a
+/// singleton is looked at only when its own cluster or a neighbour's is flagged `changed`: it
+/// found no cluster before, and only a change can give it one.
 inline void ChooseRejoinTargets(const PointArray &normals, const NeighborGraph &graph, const IndexArray &label,
                                 const IndexArray &size, const PointArray &normalSum,
-                                const FlatVector<char> &changed, const IndexArray &singletons, int pass,
-                                float maxScore, IndexArray &target)
+                                const FlatVector<char> &changed, const IndexArray &singletons,
+                                bool onlyNearChanges, float maxScore, IndexArray &target)
 {
     // Later passes have few singletons left, for which threads would cost more than they save.
 #pragma omp parallel for schedule(dynamic, 256) if (singletons.size() > kRejoinParallelMin)
@@ -67,10 +71,8 @@ inline void ChooseRejoinTargets(const PointArray &normals, const NeighborGraph &
             __builtin_prefetch(label.data() + singletons[s + kRejoinPrefetchAhead]);
         }
         target[s] = -1;
-        // After the first pass a singleton left over found no cluster; only a change in a
-        // neighbour's cluster can give it one.
         const auto nextToChange = [&](int q) { return label[q] >= 0 && changed[label[q]]; };
-        if (pass > 0 && std::none_of(graph.begin(i), graph.end(i), nextToChange)) continue;
+        if (onlyNearChanges && !changed[own] && std::none_of(graph.begin(i), graph.end(i), nextToChange)) continue;
         float bestScore = maxScore;
         int best = -1;
         for (const int *q = graph.begin(i); q != graph.end(i); ++q) {
@@ -134,6 +136,9 @@ inline void ResumJoinedClusters(const PointArray &normals, const ClusterMembers 
 } // namespace detail
 
 /// Repeats passes until no singleton moves (at most maxPasses). Returns the number joined.
+/// `changed`, if given, holds a flag per cluster: on entry those changed since the last
+/// rejoining of this clustering (whose singletons left over found no cluster then; null: every
+/// singleton is new), on return also those singletons joined.
 /// Postcondition: clusters may contain empty labels; call Compact() when needed.
 ///
 /// Cost: the cluster sizes and normal sums are computed once, then only the clusters that
@@ -141,7 +146,8 @@ inline void ResumJoinedClusters(const PointArray &normals, const ClusterMembers 
 /// sees exactly the sums a pass computing them afresh would (the same float additions in the
 /// same order), and later passes only visit the singletons still left.
 inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &graph, double maxChord,
-                            Clustering &clusters, int maxPasses = 32)
+                            Clustering &clusters, int maxPasses = kRejoinMaxPasses,
+                            FlatVector<char> *changedSinceLast = nullptr)
 {
     const float maxScore = float(0.5 * maxChord * maxChord); // 1 - cos for that chord
     IndexArray &label = clusters.label;
@@ -158,10 +164,12 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
     IndexArray target(singletons.size());
     std::vector<int> touched;                // clusters that singletons joined in a pass...
     FlatVector<char> changed(count, 0);      // ... flagged for the next one
+    if (changedSinceLast) std::copy(changedSinceLast->begin(), changedSinceLast->end(), changed.begin());
     int joined = 0;
     for (int pass = 0; pass < maxPasses && !singletons.empty(); ++pass) {
-        detail::ChooseRejoinTargets(normals, graph, label, size, normalSum, changed, singletons, pass, maxScore,
-                                    target);
+        detail::ChooseRejoinTargets(normals, graph, label, size, normalSum, changed, singletons,
+                                    pass > 0 || changedSinceLast, maxScore, target);
+        if (pass == 0 && changedSinceLast) std::fill(changed.begin(), changed.end(), char(0));
         for (int t : touched) changed[t] = 0; // the previous pass's flags
         touched.clear();
         const size_t joinsBefore = joins.size();
@@ -174,6 +182,8 @@ inline int RejoinSingletons(const PointArray &normals, const NeighborGraph &grap
         for (int t : touched) changed[t] = 1;
         detail::ResumJoinedClusters(normals, before, joins, touched, normalSum);
     }
+    if (changedSinceLast)
+        for (const auto &join : joins) (*changedSinceLast)[size_t(join.first)] = 1;
     return joined;
 }
 

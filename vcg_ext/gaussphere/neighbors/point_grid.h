@@ -42,6 +42,7 @@
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
+#include <vcg_ext/gaussphere/neighbors/morton_order.h>
 #include <vcg_ext/gaussphere/support/counting_sort.h>
 #include <vcg_ext/gaussphere/support/cpu_dispatch.h>
 #include <vcg_ext/gaussphere/support/flat_vector.h>
@@ -50,19 +51,6 @@
 
 namespace vcg {
 namespace gaussphere {
-
-/// The low 21 bits of v moved to every third bit: interleaving three of these gives a
-/// 63-bit Morton (Z-order) code.
-inline std::uint64_t MortonSpread(std::uint64_t v)
-{
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-}
 
 /// (squared distance, index) packed so that integer order is lexicographic order: the
 /// bit pattern of a non-negative float grows with its value.
@@ -282,28 +270,6 @@ private:
         Source source_;
         nanoflann::KDTreeSingleIndexAdaptor<Metric, Source, 3, std::uint32_t> tree_;
     };
-
-    /// Sorts (key, index) pairs by key, keeping the given order among equal keys: an LSD radix
-    /// sort over the keys' significant bits (cells per axis rarely need more than 10 bits, so
-    /// three or four passes): linear in the points, about 0.5 s at 20 M points, short enough
-    /// between two progress reports.
-    static void SortByKeyStable(FlatVector<std::pair<std::uint64_t, int>> &keyed)
-    {
-        constexpr int kDigitBits = 11;
-        constexpr size_t kBuckets = size_t(1) << kDigitBits;
-        const size_t n = keyed.size();
-        std::uint64_t used = 0;
-#pragma omp parallel for schedule(static) reduction(| : used)
-        for (size_t e = 0; e < n; ++e) used |= keyed[e].first;
-        FlatVector<std::pair<std::uint64_t, int>> scratch(n);
-        for (int shift = 0; shift < 64 && (used >> shift) != 0; shift += kDigitBits) {
-            // A stable pass per digit, in parallel with the sequential order (counting_sort.h).
-            StableCountingSort(
-                n, kBuckets, [&](size_t e) { return int((keyed[e].first >> shift) & (kBuckets - 1)); },
-                [&](size_t e, size_t slot) { scratch[slot] = keyed[e]; });
-            keyed.swap(scratch);
-        }
-    }
 
     static constexpr int kMaxRing = 3;
     // Both costs grow linearly with N: a scan ~2.5 ns per point and query, the kd-tree's build
