@@ -74,8 +74,10 @@ bool SurveyInput(const std::string &input, const ProgressLine &progress, Survey 
     }, error);
 }
 
-/// The tile grid for the survey's box and sample, and the halo width, into `manifest`.
-void PlanTiles(const Survey &survey, const SplitOptions &options, Manifest &manifest, const ProgressLine &progress)
+/// The tile grid for the survey's box and sample, and the halo width, into `manifest`; false when
+/// tiles of the size asked for cannot hold their halo.
+bool PlanTiles(const Survey &survey, const SplitOptions &options, Manifest &manifest, const ProgressLine &progress,
+               std::string &error)
 {
     for (int a = 0; a < 3; ++a) {
         manifest.boxMin[a] = survey.boxMin[a];
@@ -100,6 +102,14 @@ void PlanTiles(const Survey &survey, const SplitOptions &options, Manifest &mani
                   choice.grid.dims[0], choice.grid.dims[1], choice.grid.dims[2], choice.grid.edge,
                   choice.largestTilePoints / 1e6);
     progress(line);
+    if (choice.fits) return true;
+    char reason[240];
+    std::snprintf(reason, sizeof reason,
+                  "tiles of at most %llu points cannot hold a halo of %g spacings: the narrowest tiles allowed (as "
+                  "wide as the halo) hold about %.0f points with it; raise --tile-points or lower --halo-spacings",
+                  (unsigned long long)options.tilePoints, options.haloSpacings, choice.largestTilePoints);
+    error = reason;
+    return false;
 }
 
 bool WriteTiles(const std::string &input, const std::string &dir, const SplitOptions &options, Manifest &manifest,
@@ -165,7 +175,7 @@ bool Split(const std::string &input, const std::string &dir, const SplitOptions 
         error = "the input has " + std::to_string(survey.usable) + " usable point(s); at least 2 are needed";
         return false;
     }
-    PlanTiles(survey, options, manifest, progress);
+    if (!PlanTiles(survey, options, manifest, progress, error)) return false;
     if (!SetTileOptions(options.param, manifest, error) || !PrepareDirectory(dir, error) ||
         !WriteTiles(input, dir, options, manifest, progress, error))
         return false;

@@ -91,10 +91,12 @@ double LargestTile(const OccupancyHistogram &histogram, int span, int haloCells,
 TileGridChoice ChooseTileGrid(const OccupancyHistogram &histogram, double halo, double tilePoints)
 {
     const int haloCells = int(std::ceil(halo / histogram.Cells().edge));
+    const int narrowest = std::max(1, std::min(haloCells, OccupancyHistogram::kCellsOnLongestSide));
     TileGridChoice choice;
-    for (int span = OccupancyHistogram::kCellsOnLongestSide; span >= 1; --span) {
+    for (int span = OccupancyHistogram::kCellsOnLongestSide; span >= narrowest; --span) {
         choice.largestTilePoints = LargestTile(histogram, span, haloCells, choice.grid);
-        if (choice.largestTilePoints <= tilePoints) break;
+        choice.fits = choice.largestTilePoints <= tilePoints;
+        if (choice.fits) break;
     }
     return choice;
 }

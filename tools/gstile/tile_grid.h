@@ -71,10 +71,14 @@ struct TileGridChoice
 {
     TileGrid grid;
     double largestTilePoints = 0; ///< core + halo of the fullest tile, as the histogram estimates it
+    bool fits = false;            ///< largestTilePoints <= the tile points asked for
 };
 
 /// The coarsest grid (largest edge, a whole number of histogram cells) whose fullest tile holds at
-/// most `tilePoints` points with its halo; the finest the histogram allows when none does.
+/// most `tilePoints` points with its halo. Tiles are never narrower than the halo: a narrower
+/// tile would mostly resample its halo, and copy each point into dozens of halos (more than the
+/// 26 neighbours of a cube). When even such tiles are too full, the grid of the narrowest, not
+/// `fits`.
 TileGridChoice ChooseTileGrid(const OccupancyHistogram &histogram, double halo, double tilePoints);
 
 } // namespace gstile

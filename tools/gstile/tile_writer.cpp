@@ -8,7 +8,7 @@
 namespace gstile {
 
 TileWriter::TileWriter(const std::string &dir, int tileCount, std::size_t bufferBytes)
-    : dir_(dir), capacity_(std::max<std::size_t>(256, bufferBytes / sizeof(TilePoint) / (2 * std::size_t(tileCount)))),
+    : dir_(dir), capacity_(std::max<std::size_t>(64, bufferBytes / sizeof(TilePoint) / (2 * std::size_t(tileCount)))),
       buckets_(2 * std::size_t(tileCount))
 {
 }

@@ -15,7 +15,7 @@ namespace gstile {
 class TileWriter
 {
 public:
-    /// `bufferBytes` is shared by the buffers of all tiles, at least 256 points each.
+    /// `bufferBytes` is shared by the buffers of all tiles, at least 64 points each.
     TileWriter(const std::string &dir, int tileCount, std::size_t bufferBytes);
     /// False once a write failed (then `Error()` says why); later points are dropped.
     bool Add(int tile, bool core, const TilePoint &point);
