@@ -30,7 +30,7 @@ const char *const kUsage =
     "       gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]\n"
     "       gstile tiles TILEDIR   (the ids of the tiles, one a line)\n"
     "split streams a binary little-endian PLY (x y z nx ny nz) into tiles of about N points with\n"
-    "their halo (default 4000000; memory of a run: about 300 B a point), X sample spacings wide\n"
+    "their halo (default 4000000; a run takes up to about 200 B a point), X sample spacings wide\n"
     "(default 24); run resamples one tile and keeps the surfels it owns; merge concatenates them;\n"
     "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). gsresample's options:\n";
 
