@@ -2,6 +2,7 @@
 # Tiled resampling at scale (bench/tile/README.md):
 #   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
+#                                               # (PARTS=n: n x 20 million instead of 10)
 # Inputs: the dragon densified by gsscale (bench/scale); 200 million = ten samplings of 20 million
 # (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
 # (MEMORY_CAP_KIB, default 4 GiB) and records its peak RSS. Writes key=value lines into
@@ -47,20 +48,24 @@ compare() { # POINTS TILE_POINTS
 }
 
 big() {
-  local parts=()
-  for seed in 1 2 3 4 5 6 7 8 9 10; do parts+=("$(generate 20000000 "$seed")"); done
-  [ -f dragon_200M.ply ] || nice /usr/bin/python3 "$here/bench/tile/concat_ply.py" dragon_200M.ply "${parts[@]}"
-  rm -f "${parts[@]}"
-  measure split_200M "$gstile" split dragon_200M.ply tiles_200M --tile-points "${TILE_POINTS:-8000000}"
-  grep "tiles with points" split_200M.log
+  local count=${PARTS:-10} parts=() input
+  for seed in $(seq "$count"); do parts+=("$(generate 20000000 "$seed")"); done
+  input=${parts[0]}
+  if [ "$count" -gt 1 ]; then
+    input=dragon_$((count * 20))M.ply
+    [ -f "$input" ] || nice /usr/bin/python3 "$here/bench/tile/concat_ply.py" "$input" "${parts[@]}"
+    rm -f "${parts[@]}"
+  fi
+  measure split_big "$gstile" split "$input" tiles_big --tile-points "${TILE_POINTS:-8000000}"
+  grep "tiles with points" split_big.log
   capped_gstile
   for workers in 1 2; do
-    rm -f tiles_200M/tile_*.surfel tile_runs.rss
-    measure "dask_${workers}_workers" /usr/bin/python3 "$here/scripts/gstile_dask.py" tiles_200M \
-      "out_200M_$workers.surfel" --workers "$workers" --gstile "$work/capped_gstile"
+    rm -f tiles_big/tile_*.surfel tile_runs.rss
+    measure "dask_${workers}_workers" /usr/bin/python3 "$here/scripts/gstile_dask.py" tiles_big \
+      "out_big_$workers.surfel" --workers "$workers" --gstile "$work/capped_gstile"
     sort -n tile_runs.rss | tail -1 | awk '{ printf "dask_'"$workers"'_workers largest_tile_peak_mib=%.0f\n", $1 / 1024 }'
   done
-  cmp out_200M_1.surfel out_200M_2.surfel && echo "outputs_1_and_2_workers=identical"
+  cmp out_big_1.surfel out_big_2.surfel && echo "outputs_1_and_2_workers=identical"
   tail -1 dask_2_workers.log
 }
 
