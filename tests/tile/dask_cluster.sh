@@ -11,7 +11,8 @@
 set -euo pipefail
 rm -rf "$WORK_DIR" && mkdir -p "$WORK_DIR" && cd "$WORK_DIR"
 pids=()
-cleanup() { for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; }
+# SIGKILL: a worker told to stop gracefully waits for a scheduler that may be gone already.
+cleanup() { for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done; }
 trap cleanup EXIT
 
 "$GSTILE" split "$INPUT" tiles --tile-points 20000 > split.log
