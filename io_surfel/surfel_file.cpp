@@ -261,13 +261,13 @@ bool operator==(const SurfelRecord& a, const SurfelRecord& b) {
          a.blendScale == b.blendScale && a.fitOffset == b.fitOffset && a.color == b.color;
 }
 
-bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error) {
-  surfels.clear();
-  std::uint64_t count = 0;
-  std::size_t floatCount = kFloatPropertyCount;
+namespace {
+
+// The header, then a data section of exactly the announced records; `in` is left at the first.
+bool readHeaderAndSize(std::istream& in, std::uint64_t& count, std::size_t& floatCount, std::string& error) {
+  floatCount = kFloatPropertyCount;
   if (!readHeader(in, count, floatCount, error)) return false;
   const std::size_t bytesPerRecord = recordBytes(floatCount);
-
   // Checking the size first also keeps a corrupt count from allocating a huge vector.
   std::uint64_t dataBytes = 0;
   if (!remainingBytes(in, dataBytes)) return fail(error, "cannot determine the file size");
@@ -277,6 +277,24 @@ bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::stri
   if (dataBytes != count * bytesPerRecord)
     return fail(error, std::to_string(dataBytes - count * bytesPerRecord) +
                            " unexpected bytes after the last surfel");
+  return true;
+}
+
+}  // namespace
+
+bool readSurfelCount(const std::string& path, std::uint64_t& count, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(error, "cannot open " + quotedPath(path) + ": " + std::strerror(errno));
+  std::size_t floatCount = 0;
+  return readHeaderAndSize(in, count, floatCount, error);
+}
+
+bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error) {
+  surfels.clear();
+  std::uint64_t count = 0;
+  std::size_t floatCount = 0;
+  if (!readHeaderAndSize(in, count, floatCount, error)) return false;
+  const std::size_t bytesPerRecord = recordBytes(floatCount);
 
   surfels.reserve(count);
   std::vector<unsigned char> chunk(bytesPerRecord * std::min<std::uint64_t>(count, kRecordsPerChunk));
@@ -306,14 +324,16 @@ bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels,
   return readSurfels(in, surfels, error);
 }
 
-bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error) {
-  if (!checkGeometry(surfels, error)) return false;
+void writeSurfelHeader(std::ostream& out, std::uint64_t count) {
   out << "ply\nformat binary_little_endian 1.0\ncomment " << kSurfelFileMagic << "\n"
-      << "element vertex " << surfels.size() << "\n";
+      << "element vertex " << count << "\n";
   for (const char* name : kFloatPropertyNames) out << "property float " << name << "\n";
   for (const char* name : kColorPropertyNames) out << "property uchar " << name << "\n";
   out << "end_header\n";
+}
 
+bool writeSurfelRecords(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error) {
+  if (!checkGeometry(surfels, error)) return false;
   const std::size_t bytesPerRecord = recordBytes(kFloatPropertyCount);
   std::vector<unsigned char> chunk(bytesPerRecord * kRecordsPerChunk);
   for (std::size_t first = 0; first < surfels.size() && out; first += kRecordsPerChunk) {
@@ -323,6 +343,12 @@ bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, s
   }
   if (!out.flush()) return fail(error, "write error");
   return true;
+}
+
+bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error) {
+  if (!checkGeometry(surfels, error)) return false;
+  writeSurfelHeader(out, surfels.size());
+  return writeSurfelRecords(out, surfels, error);
 }
 
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,

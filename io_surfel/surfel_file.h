@@ -59,12 +59,21 @@ constexpr std::size_t kMaxReasonLength = 200;
 bool readSurfels(std::istream& in, std::vector<SurfelRecord>& surfels, std::string& error);
 bool readSurfelFile(const std::string& path, std::vector<SurfelRecord>& surfels, std::string& error);
 
+// The number of records of the file at `path`, from its header, after the same checks of the
+// header and of the data section's size as readSurfelFile (the records themselves are not read).
+bool readSurfelCount(const std::string& path, std::uint64_t& count, std::string& error);
+
 // Writing refuses, before writing anything, surfels the reader would refuse (non-finite
 // geometry), naming the first one; quality, blend scale, fit offset and colour are written as
 // they are.
 bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error);
+
+// writeSurfels in parts, for a file written from several record lists in turn: the header
+// announcing `count` records, then the lists, each refused as a whole for non-finite geometry.
+void writeSurfelHeader(std::ostream& out, std::uint64_t count);
+bool writeSurfelRecords(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
 
 // True when some surfel has a non-zero axis. A file without any is one written from a layer
 // without ellipse frames, and loads without the ellipse attributes.

@@ -13,13 +13,15 @@ packages=(
   # build
   build-essential cmake pkg-config dpkg-dev
   qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libglew-dev libeigen3-dev
-  libgtest-dev libnanoflann-dev glslang-tools
+  libgtest-dev libnanoflann-dev glslang-tools nlohmann-json3-dev
   # sanitizer and fuzz builds: clang with libFuzzer and the sanitizer runtimes, LLVM's OpenMP
   clang-14 libclang-rt-14-dev libomp-14-dev
   # host application and headless runs
   meshlab xvfb xauth libgl1-mesa-dri mesa-utils imagemagick xdotool
   # benchmark peers and plots
   libcgal-dev python3 python3-matplotlib python3-numpy time hyperfine
+  # distributed tiled runs (scripts/gstile_dask.py)
+  python3-distributed
 )
 
 missing=()

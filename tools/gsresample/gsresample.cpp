@@ -10,7 +10,6 @@
 // parameters are checked before the input is read, and the output appears only when complete.
 #include <cstdio>
 #include <functional>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,6 +22,7 @@
 #include <wrap/io_trimesh/export_ply.h>
 
 #include "ply_input.h"
+#include "resampling_options.h"
 #include "strict_parse.h"
 
 using namespace vcg::gaussphere;
@@ -33,7 +33,6 @@ namespace {
 // each with the "..." of a cut.
 constexpr std::size_t kMaxPathChars = 103;
 constexpr std::size_t kMaxMessageChars = 303;
-const int kIntMax = std::numeric_limits<int>::max();
 
 int Fail(int status, const std::string &message)
 {
@@ -46,46 +45,12 @@ std::string PathText(const std::string &path) { return surfel_io::printableText(
 /// Usage and the options, from the parameter table (resampling_params.h).
 std::string Usage()
 {
-    std::string text = "usage: gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [OPTION VALUE]...\n"
-                       "       gsresample --help\n"
-                       "INPUT holds x y z nx ny nz per vertex; the output is a .surfel file (ellipse axes included)\n"
-                       "when OUTPUT ends in .surfel, otherwise a PLY. The size control is the first given of\n"
-                       "--max-error, --target, --percentage, else the level. Options (default; valid values):\n";
-    for (const ParameterSpec &spec : ParameterTable()) {
-        if (spec.option == nullptr) continue;
-        char line[96];
-        std::snprintf(line, sizeof line, "  %-15s %s (%g; %s)%s\n", spec.option,
-                      spec.kind == ParameterKind::Int ? "N" : spec.kind == ParameterKind::Bool ? "0|1" : "X",
-                      spec.defaultValue, spec.RangeText().c_str(),
-                      spec.audience == ParameterAudience::Expert ? " [expert]" : "");
-        text += line;
-        text += "      " + std::string(spec.help) + "\n";
-    }
-    return text;
-}
-
-/// Parses `value` for `spec` into `param`, or explains why it cannot.
-bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingParams &param, std::string &error)
-{
-    double number = 0;
-    if (spec.kind == ParameterKind::Bool) {
-        int index = 0;
-        if (!gsresample::ParseChoice(value, {"0", "1"}, index, error)) return false;
-        number = index;
-    } else if (spec.kind == ParameterKind::Int) {
-        int integer = 0;
-        const int max = spec.max >= kIntMax ? kIntMax : int(spec.max);
-        if (!gsresample::ParseInt(value, int(spec.min), max, integer, error)) return false;
-        number = integer;
-    } else if (!gsresample::ParseDouble(value, spec.min, spec.max, number, error)) {
-        return false;
-    }
-    if (!spec.Accepts(number)) {
-        error = "expected a value " + spec.RangeText() + ", got " + gsresample::Quoted(value);
-        return false;
-    }
-    spec.set(param, number);
-    return true;
+    return "usage: gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [OPTION VALUE]...\n"
+           "       gsresample --help\n"
+           "INPUT holds x y z nx ny nz per vertex; the output is a .surfel file (ellipse axes included)\n"
+           "when OUTPUT ends in .surfel, otherwise a PLY. The size control is the first given of\n"
+           "--max-error, --target, --percentage, else the level. Options (default; valid values):\n" +
+           gsresample::OptionsUsage();
 }
 
 struct CommandLine
@@ -110,9 +75,7 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
             paths.push_back(arg);
             continue;
         }
-        const ParameterSpec *option = nullptr;
-        for (const ParameterSpec &spec : ParameterTable())
-            if (spec.option != nullptr && arg == spec.option) option = &spec;
+        const ParameterSpec *option = gsresample::FindOption(arg);
         if (!option) {
             error = "unknown option " + gsresample::Quoted(arg) + " (see --help)";
             return false;
@@ -128,7 +91,7 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
             }
         }
         seen.push_back(arg);
-        if (!SetOption(*option, argv[++a], line.param, error)) {
+        if (!gsresample::SetOption(*option, argv[++a], line.param, error)) {
             error = arg + ": " + error;
             return false;
         }

@@ -26,53 +26,7 @@ constexpr std::size_t kMaxErrorChars = 200;
 // Quoted header text in messages: 32 characters of it and the "..." of a cut.
 constexpr std::size_t kQuoteChars = 35;
 
-struct HeaderProperty
-{
-    std::string name;
-    std::string type;      // items' type for a list
-    bool isList = false;
-    std::string countType; // lists only
-};
-
-struct HeaderElement
-{
-    std::string name;
-    std::uint64_t count = 0;
-    std::vector<HeaderProperty> properties;
-
-    const HeaderProperty *Find(const std::string &property) const
-    {
-        for (const HeaderProperty &p : properties)
-            if (p.name == property) return &p;
-        return nullptr;
-    }
-};
-
-struct PlyHeader
-{
-    bool binary = false; // either byte order: only the records' sizes matter here
-    std::vector<HeaderElement> elements;
-    std::uint64_t bodyOffset = 0;
-};
-
 std::string Quote(const std::string &text) { return "'" + surfel_io::printableText(text, kQuoteChars) + "'"; }
-
-/// Bytes of one value of a PLY scalar type (both spellings), 0 for an unknown name.
-int TypeSize(const std::string &type)
-{
-    static const char *const names[][2] = {{"char", "int8"},   {"uchar", "uint8"},   {"short", "int16"},
-                                           {"ushort", "uint16"}, {"int", "int32"},     {"uint", "uint32"},
-                                           {"float", "float32"}, {"double", "float64"}};
-    static const int sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
-    for (int i = 0; i < 8; ++i)
-        if (type == names[i][0] || type == names[i][1]) return sizes[i];
-    return 0;
-}
-
-bool IsFloatingType(const std::string &type)
-{
-    return type == "float" || type == "float32" || type == "double" || type == "float64";
-}
 
 std::vector<std::string> SplitTokens(const std::string &line)
 {
@@ -205,7 +159,10 @@ bool ParseFormat(const std::vector<std::string> &tokens, const std::string &line
         return false;
     }
     if (tokens[1] == "ascii") header.binary = false;
-    else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") header.binary = true;
+    else if (tokens[1] == "binary_little_endian" || tokens[1] == "binary_big_endian") {
+        header.binary = true;
+        header.bigEndian = tokens[1] == "binary_big_endian";
+    }
     else {
         error = "unknown format " + Quote(tokens[1]);
         return false;
@@ -406,9 +363,24 @@ std::string Bounded(const std::string &message) { return surfel_io::printableTex
 
 } // namespace
 
-bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error)
+int TypeSize(const std::string &type)
 {
-    typedef vcg::tri::io::ImporterPLY<vcg::gaussphere::OrientedPointMesh> Importer;
+    static const char *const names[][2] = {{"char", "int8"},   {"uchar", "uint8"},   {"short", "int16"},
+                                           {"ushort", "uint16"}, {"int", "int32"},     {"uint", "uint32"},
+                                           {"float", "float32"}, {"double", "float64"}};
+    static const int sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    for (int i = 0; i < 8; ++i)
+        if (type == names[i][0] || type == names[i][1]) return sizes[i];
+    return 0;
+}
+
+bool IsFloatingType(const std::string &type)
+{
+    return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
+bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::string &error)
+{
     struct stat info;
     if (::stat(path.c_str(), &info) != 0) {
         error = Bounded(std::string("cannot open the file: ") + std::strerror(errno));
@@ -423,14 +395,20 @@ bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointM
         error = Bounded(std::string("cannot open the file: ") + std::strerror(errno));
         return false;
     }
-    PlyHeader header;
     const std::uint64_t fileSize = std::uint64_t(info.st_size);
     if (!ReadHeader(in, fileSize, header, error) || !CheckElements(header, error) ||
         !CheckBodySize(header, fileSize, error)) {
         error = Bounded(error);
         return false;
     }
-    in.close();
+    return true;
+}
+
+bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error)
+{
+    typedef vcg::tri::io::ImporterPLY<vcg::gaussphere::OrientedPointMesh> Importer;
+    PlyHeader header;
+    if (!ReadOrientedPointHeader(path, header, error)) return false;
 
     int mask = 0;
     int status = 0;

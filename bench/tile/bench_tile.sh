@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Tiled resampling at scale (bench/tile/README.md):
+#   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
+#   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
+#                                               # (PARTS=n: n x 20 million instead of 10)
+# Inputs: the dragon densified by gsscale (bench/scale); 200 million = ten samplings of 20 million
+# (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
+# (MEMORY_CAP_KIB, default 4 GiB) and records its peak RSS. Writes key=value lines into
+# WORK_DIR/*.txt and prints them. Needs a Release build in build/ (gsresample, gstile,
+# gstile_compare, gsscale) and about 20 GB of disk for `big`.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/../.." && pwd)
+work=$(mkdir -p "$1" && cd "$1" && pwd)
+stage=$2
+bin=$here/build
+gsscale=$bin/bench/scale/gsscale gstile=$bin/tools/gstile/gstile
+cap=${MEMORY_CAP_KIB:-4194304}
+cd "$work"
+
+measure() { # NAME COMMAND...: wall seconds and peak RSS (MiB) of COMMAND into NAME.time
+  /usr/bin/time -f "wall_s=%e peak_mib=%M" -o "$1.time" nice "${@:2}" > "$1.log" 2>&1
+  awk '{ split($2, m, "="); printf "%s %s peak_mib=%.0f\n", "'"$1"'", $1, m[2] / 1024 }' "$1.time"
+}
+
+generate() { # POINTS SEED
+  local out=dragon_$1_s$2.ply
+  [ -f "$out" ] || nice "$gsscale" generate --points "$1" --seed "$2" --shape dragon --out "$out" > /dev/null
+  echo "$out"
+}
+
+capped_gstile() { # a wrapper for gstile_dask.py --gstile: the cap, and each run's peak RSS
+  cat > capped_gstile <<WRAP
+#!/bin/sh
+ulimit -v $cap
+exec /usr/bin/time -a -o "$work/tile_runs.rss" -f "%M" "$gstile" "\$@"
+WRAP
+  chmod +x capped_gstile
+}
+
+compare() { # POINTS TILE_POINTS
+  local input; input=$(generate "$1" 1)
+  measure "whole_$1" "$bin/tools/gsresample/gsresample" "$input" "whole_$1.surfel"
+  measure "tiled_$1" "$gstile" all "$input" "tiled_$1.surfel" --tile-points "$2" --tile-dir "tiles_$1"
+  echo "tiled_$1 tiles=$(grep -c '^\[run\]' "tiled_$1.log")"
+  nice "$bin/tools/gstile/gstile_compare" "tiles_$1" "whole_$1.surfel" "tiled_$1.surfel" > "compare_$1.txt"
+  sed "s/^/compare_$1 /" "compare_$1.txt"
+  rm -rf "tiles_$1"
+}
+
+big() {
+  local count=${PARTS:-10} parts=() input
+  for seed in $(seq "$count"); do parts+=("$(generate 20000000 "$seed")"); done
+  input=${parts[0]}
+  if [ "$count" -gt 1 ]; then
+    input=dragon_$((count * 20))M.ply
+    [ -f "$input" ] || nice /usr/bin/python3 "$here/bench/tile/concat_ply.py" "$input" "${parts[@]}"
+    rm -f "${parts[@]}"
+  fi
+  measure split_big "$gstile" split "$input" tiles_big --tile-points "${TILE_POINTS:-8000000}"
+  grep "tiles with points" split_big.log
+  capped_gstile
+  for workers in 1 2; do
+    rm -f tiles_big/tile_*.surfel tile_runs.rss
+    measure "dask_${workers}_workers" /usr/bin/python3 "$here/scripts/gstile_dask.py" tiles_big \
+      "out_big_$workers.surfel" --workers "$workers" --gstile "$work/capped_gstile"
+    sort -n tile_runs.rss | tail -1 | awk '{ printf "dask_'"$workers"'_workers largest_tile_peak_mib=%.0f\n", $1 / 1024 }'
+  done
+  cmp out_big_1.surfel out_big_2.surfel && echo "outputs_1_and_2_workers=identical"
+  tail -1 dask_2_workers.log
+}
+
+case $stage in
+  compare) { compare 5000000 1000000; compare 20000000 4000000; } | tee compare.txt ;;
+  big) big | tee big.txt ;;
+  *) echo "usage: $0 WORK_DIR compare|big" >&2; exit 2 ;;
+esac

@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Tiled resampling on a Dask cluster: one task per tile of a tile directory, then the merge.
+
+    scripts/gstile_dask.py TILEDIR OUTPUT.surfel|OUTPUT.ply [--scheduler ADDRESS]
+                           [--input INPUT.ply [--split-args "..."]] [--gstile PATH]
+
+With --input the input is split into TILEDIR first (`gstile split`, on this machine); else
+TILEDIR holds a split already. Each task runs `gstile run TILEDIR ID` on a worker, which must see
+TILEDIR and the gstile binary at the same paths (a shared folder). Without --scheduler a local
+cluster of --workers processes is started. A worker lost in the middle of a task is replaced by
+the scheduler, which runs the task again elsewhere (a tile's result appears only once complete,
+so a lost run leaves nothing half-written, and a run is deterministic, so the output does not
+change). A tile that fails (bad data, a tile file damaged) stops the run with an error naming the
+tile. Debian's python3-distributed (scripts/setup.sh installs it); /usr/bin/python3 is Debian's.
+"""
+import argparse
+import json
+import os
+import shlex
+import subprocess
+import sys
+
+from distributed import Client, LocalCluster, as_completed
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_GSTILE = os.path.join(HERE, "..", "build", "tools", "gstile", "gstile")
+
+
+class TileFailed(Exception):
+    """A tile's run ended with an error; the message names the tile."""
+
+
+def run_tile(gstile, tile_dir, tile_id, threads):
+    """The task: one `gstile run`, its figures line on success."""
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    proc = subprocess.run([gstile, "run", tile_dir, str(tile_id)], capture_output=True, text=True, env=env)
+    if proc.returncode != 0:
+        reason = proc.stderr.strip().replace("gstile: error: ", "") or f"exit status {proc.returncode}"
+        raise TileFailed(f"tile {tile_id} failed: {reason}")
+    return proc.stdout.strip()
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("tile_dir")
+    parser.add_argument("output")
+    parser.add_argument("--scheduler", help="address of a running scheduler, e.g. tcp://127.0.0.1:8786")
+    parser.add_argument("--workers", type=int, default=2, help="local cluster: worker processes (2)")
+    parser.add_argument("--threads", type=int, default=1, help="OpenMP threads of each tile's run (1)")
+    parser.add_argument("--input", help="split this PLY into TILE_DIR first")
+    parser.add_argument("--split-args", default="", help='options of `gstile split`, e.g. "--tile-points 2000000"')
+    parser.add_argument("--gstile", default=DEFAULT_GSTILE, help="the gstile binary (the build's)")
+    return parser.parse_args()
+
+
+def check_call(command):
+    if subprocess.run(command).returncode != 0:
+        sys.exit(f"gstile_dask: error: {' '.join(map(shlex.quote, command))} failed")
+
+
+def tile_ids(tile_dir):
+    with open(os.path.join(tile_dir, "manifest.json")) as manifest:
+        return [tile["id"] for tile in json.load(manifest)["tiles"]]
+
+
+def run_tiles(client, gstile, tile_dir, ids, threads):
+    """Submits every tile, prints each one's line as it completes; stops at the first failure."""
+    futures = [client.submit(run_tile, gstile, tile_dir, i, threads, key=f"gstile-tile-{i}", pure=False) for i in ids]
+    done = 0
+    for future in as_completed(futures):
+        try:
+            line = future.result()
+        except TileFailed as failure:
+            client.cancel(futures)
+            sys.exit(f"gstile_dask: error: {failure}")
+        done += 1
+        print(f"[dask] {done}/{len(ids)} done | {line}", flush=True)
+
+
+def main():
+    args = parse_arguments()
+    gstile = os.path.abspath(args.gstile)
+    tile_dir = os.path.abspath(args.tile_dir)
+    if args.input:
+        check_call([gstile, "split", args.input, tile_dir] + shlex.split(args.split_args))
+    ids = tile_ids(tile_dir)
+    cluster = None
+    if args.scheduler:
+        client = Client(args.scheduler)
+    else:
+        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+    print(f"[dask] {len(ids)} tiles on {len(client.scheduler_info()['workers'])} worker(s) of {client.scheduler.address}",
+          flush=True)
+    try:
+        run_tiles(client, gstile, tile_dir, ids, args.threads)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    check_call([gstile, "merge", tile_dir, args.output])
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,166 @@
+// gstile's parts (tools/gstile): the grid's ownership of points, the ownership of clusters, a
+// split-run-merge of the bunny against its whole run, and what a damaged tile directory gives.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include <tools/gsresample/ply_input.h>
+#include <tools/gstile/merge.h>
+#include <tools/gstile/split.h>
+#include <tools/gstile/tile_run.h>
+
+using namespace gstile;
+
+namespace {
+
+const std::string kBunny = std::string(GAUSSPHERE_TEST_DATA_DIR) + "/bunny.ply";
+
+TEST(TileGrid, EveryPointHasOneCoreAndItsHaloTilesReachIt)
+{
+    TileGrid grid;
+    grid.origin = {{-1, -2, 0}};
+    grid.edge = 0.5;
+    grid.dims = {{4, 8, 2}};
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> x(-1, 1), y(-2, 2), z(0, 1);
+    const double halo = 0.2;
+    for (int i = 0; i < 20000; ++i) {
+        // Every tenth point on a grid plane or on the box's far faces.
+        float p[3] = {x(random), y(random), z(random)};
+        if (i % 10 == 0) p[i % 3] = i % 20 == 0 ? float(grid.origin[i % 3] + grid.edge * (i % 4)) : 1.0f;
+        const GridCell home = grid.CellOf(p);
+        for (int a = 0; a < 3; ++a) {
+            ASSERT_GE(home[a], 0);
+            ASSERT_LT(home[a], grid.dims[a]);
+            const double low = grid.origin[a] + grid.edge * home[a];
+            ASSERT_TRUE(p[a] >= low && (p[a] < low + grid.edge || home[a] == grid.dims[a] - 1)) << "half-open core";
+        }
+        std::set<int> halos;
+        grid.ForHaloTiles(p, halo, home, [&](int id) { halos.insert(id); });
+        EXPECT_EQ(halos.count(grid.IdOf(home)), 0u);
+        for (int id = 0; id < grid.TileCount(); ++id) {
+            const GridCell c = grid.CellOfId(id);
+            bool near = true;
+            for (int a = 0; a < 3; ++a) {
+                const double low = grid.origin[a] + grid.edge * c[a];
+                near = near && p[a] >= low - halo && p[a] <= low + grid.edge + halo;
+            }
+            if (id != grid.IdOf(home)) ASSERT_EQ(near, halos.count(id) == 1) << "tile " << id;
+        }
+    }
+}
+
+TEST(Ownership, TheTileOfTheSmallestInputIndexKeepsTheCluster)
+{
+    vcg::gaussphere::ResamplingResult result;
+    result.surfels.resize(4);
+    // Vertices 0-2 are the core, 3-5 the halo; input indices are not in vertex order.
+    const std::vector<std::uint64_t> indices = {40, 12, 7, 3, 50, 9};
+    result.representative = {0, 0, 1, 1, 2, 3};
+    // Surfel 0: {40, 12} both core. 1: {7 core, 3 halo}: anchor 3, another tile's. 2: {50} halo.
+    // 3: {9} halo.
+    const std::vector<bool> owned = OwnedSurfels(result, indices, 3);
+    EXPECT_EQ(owned, (std::vector<bool>{true, false, false, false}));
+}
+
+/// The bunny split into small tiles in a fresh directory.
+class BunnyTiles : public ::testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        dir_ = ::testing::TempDir() + "gstile_bunny_" + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        SplitOptions options;
+        options.tilePoints = 20000;
+        std::string error;
+        ASSERT_TRUE(Split(kBunny, dir_, options, manifest_, [](const std::string &) {}, error)) << error;
+        ASSERT_GE(manifest_.tiles.size(), 4u);
+    }
+    void RunAll()
+    {
+        for (const TileEntry &t : manifest_.tiles) {
+            TileRunFigures figures;
+            std::string error;
+            ASSERT_TRUE(RunTile(dir_, manifest_, t.id, figures, error)) << error;
+        }
+    }
+    std::string dir_;
+    Manifest manifest_;
+};
+
+TEST_F(BunnyTiles, TiledCountAndRepresentedPointsMatchTheWholeRun)
+{
+    vcg::gaussphere::OrientedPointMesh mesh;
+    std::string error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(kBunny, mesh, error)) << error;
+    const auto whole = vcg::gaussphere::ResamplePointSet(mesh, vcg::gaussphere::ResamplingParams());
+    RunAll();
+    MergeFigures figures;
+    ASSERT_TRUE(Merge(dir_, manifest_, dir_ + "/merged.surfel", figures, error)) << error;
+    EXPECT_NEAR(double(figures.surfels), double(whole.surfels.size()), 0.005 * whole.surfels.size());
+    // Each input point belongs to one kept cluster, up to the few border clusters the tiles
+    // cut differently.
+    EXPECT_NEAR(double(figures.members), double(manifest_.points), 0.005 * manifest_.points);
+    std::uint64_t core = 0;
+    for (const TileEntry &t : manifest_.tiles) core += t.corePoints;
+    EXPECT_EQ(core, manifest_.points) << "every point in exactly one core";
+}
+
+TEST_F(BunnyTiles, ACorruptOrTruncatedTileFileIsRefusedWithTheTileNamed)
+{
+    const TileEntry &tile = manifest_.tiles[1];
+    const std::string core = TilePath(dir_, tile.id, ".core");
+    {
+        std::fstream f(core, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(100);
+        f.put('\x7f');
+    }
+    TileRunFigures figures;
+    std::string error;
+    EXPECT_FALSE(RunTile(dir_, manifest_, tile.id, figures, error));
+    EXPECT_NE(error.find("tile " + std::to_string(tile.id) + ":"), std::string::npos) << error;
+    EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+    std::ofstream(core, std::ios::binary | std::ios::app) << "extra";
+    EXPECT_FALSE(RunTile(dir_, manifest_, tile.id, figures, error));
+    EXPECT_NE(error.find("bytes"), std::string::npos) << error;
+}
+
+TEST_F(BunnyTiles, AMissingOrPartialResultStopsTheMergeWithTheTileNamed)
+{
+    RunAll();
+    const TileEntry &tile = manifest_.tiles[2];
+    const std::string result = TilePath(dir_, tile.id, ".surfel");
+    // A run killed while writing leaves only its temporary file: the result is missing.
+    ASSERT_EQ(std::rename(result.c_str(), (result + ".tmp4242").c_str()), 0);
+    MergeFigures figures;
+    std::string error;
+    EXPECT_FALSE(Merge(dir_, manifest_, dir_ + "/merged.surfel", figures, error));
+    EXPECT_NE(error.find("tile " + std::to_string(tile.id) + ":"), std::string::npos) << error;
+    // A result cut short (written by something else than gstile run) is refused too.
+    std::ifstream in(result + ".tmp4242", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(result, std::ios::binary) << bytes.substr(0, bytes.size() - 10);
+    EXPECT_FALSE(Merge(dir_, manifest_, dir_ + "/merged.surfel", figures, error));
+    EXPECT_NE(error.find("tile " + std::to_string(tile.id) + ":"), std::string::npos) << error;
+    std::ifstream merged(dir_ + "/merged.surfel");
+    EXPECT_FALSE(merged.good()) << "no output from a failed merge";
+}
+
+TEST_F(BunnyTiles, ARerunGivesTheSameBytes)
+{
+    RunAll();
+    const std::string result = TilePath(dir_, manifest_.tiles[0].id, ".surfel");
+    std::ifstream first(result, std::ios::binary);
+    const std::string before((std::istreambuf_iterator<char>(first)), std::istreambuf_iterator<char>());
+    TileRunFigures figures;
+    std::string error;
+    ASSERT_TRUE(RunTile(dir_, manifest_, manifest_.tiles[0].id, figures, error)) << error;
+    std::ifstream second(result, std::ios::binary);
+    const std::string after((std::istreambuf_iterator<char>(second)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(before, after);
+}
+
+} // namespace

@@ -1,0 +1,59 @@
+#include "resampling_options.h"
+
+#include <cstdio>
+#include <limits>
+
+#include "strict_parse.h"
+
+using namespace vcg::gaussphere;
+
+namespace gsresample {
+
+const ParameterSpec *FindOption(const std::string &option)
+{
+    for (const ParameterSpec &spec : ParameterTable())
+        if (spec.option != nullptr && option == spec.option) return &spec;
+    return nullptr;
+}
+
+bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingParams &param, std::string &error)
+{
+    const int intMax = std::numeric_limits<int>::max();
+    double number = 0;
+    if (spec.kind == ParameterKind::Bool) {
+        int index = 0;
+        if (!ParseChoice(value, {"0", "1"}, index, error)) return false;
+        number = index;
+    } else if (spec.kind == ParameterKind::Int) {
+        int integer = 0;
+        const int max = spec.max >= intMax ? intMax : int(spec.max);
+        if (!ParseInt(value, int(spec.min), max, integer, error)) return false;
+        number = integer;
+    } else if (!ParseDouble(value, spec.min, spec.max, number, error)) {
+        return false;
+    }
+    if (!spec.Accepts(number)) {
+        error = "expected a value " + spec.RangeText() + ", got " + Quoted(value);
+        return false;
+    }
+    spec.set(param, number);
+    return true;
+}
+
+std::string OptionsUsage()
+{
+    std::string text;
+    for (const ParameterSpec &spec : ParameterTable()) {
+        if (spec.option == nullptr) continue;
+        char line[96];
+        std::snprintf(line, sizeof line, "  %-15s %s (%g; %s)%s\n", spec.option,
+                      spec.kind == ParameterKind::Int ? "N" : spec.kind == ParameterKind::Bool ? "0|1" : "X",
+                      spec.defaultValue, spec.RangeText().c_str(),
+                      spec.audience == ParameterAudience::Expert ? " [expert]" : "");
+        text += line;
+        text += "      " + std::string(spec.help) + "\n";
+    }
+    return text;
+}
+
+} // namespace gsresample

@@ -1,0 +1,28 @@
+// `gstile merge`: the tiles' results concatenated in tile order into one .surfel file or PLY,
+// one tile's surfels in memory at a time. A tile without a complete result (never run, or
+// killed before its result was renamed into place) stops the merge with its id.
+#ifndef GSTILE_MERGE_H
+#define GSTILE_MERGE_H
+
+#include <cstdint>
+#include <string>
+
+#include "manifest.h"
+
+namespace gstile {
+
+struct MergeFigures
+{
+    std::uint64_t surfels = 0;
+    std::uint64_t members = 0; ///< points the surfels represent: the input's usable points when no
+                               ///< border cluster is lost or kept twice
+};
+
+/// Writes `output` (a .surfel file when its name ends in .surfel, else a PLY with normal, radius
+/// and quality) through a temporary name.
+bool Merge(const std::string &dir, const Manifest &manifest, const std::string &output, MergeFigures &figures,
+           std::string &error);
+
+} // namespace gstile
+
+#endif

@@ -1,0 +1,68 @@
+#include "tile_params.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <vcg/space/box3.h>
+#include <vcg_ext/gaussphere/usable_points.h>
+
+#include <tools/gsresample/resampling_options.h>
+
+using namespace vcg::gaussphere;
+
+namespace gstile {
+
+double ResamplerDiagonal(const std::array<float, 3> &boxMin, const std::array<float, 3> &boxMax)
+{
+    const vcg::Point3f lo(boxMin[0], boxMin[1], boxMin[2]), hi(boxMax[0], boxMax[1], boxMax[2]);
+    const double scale = UnitScaleOf((vcg::Point3d::Construct(hi) - vcg::Point3d::Construct(lo)).Norm());
+    const vcg::Box3f unit(vcg::Point3f::Construct(vcg::Point3d::Construct(lo) * scale),
+                          vcg::Point3f::Construct(vcg::Point3d::Construct(hi) * scale));
+    return double(unit.Diag()) / scale;
+}
+
+bool SetTileOptions(const ResamplingParams &param, Manifest &manifest, std::string &error)
+{
+    ResamplingParams tile = param;
+    if (tile.weightWidth == 0) tile.weightWidth = 0.01 * manifest.diagonal;
+    manifest.maxErrorOfDiagonal = tile.maxErrorFraction;
+    tile.maxErrorFraction = 0;
+    if (tile.targetCount > 0) {
+        if (std::uint64_t(tile.targetCount) > manifest.points) {
+            error = "--target " + std::to_string(tile.targetCount) + " exceeds the " + std::to_string(manifest.points) +
+                    " usable points of the input";
+            return false;
+        }
+        tile.targetPercentage = 100.0 * tile.targetCount / double(manifest.points);
+        tile.targetCount = 0;
+    }
+    manifest.options.clear();
+    for (const ParameterSpec &spec : ParameterTable()) {
+        if (spec.option == nullptr || spec.get == nullptr) continue;
+        char value[32];
+        std::snprintf(value, sizeof value, "%.17g", spec.get(tile));
+        manifest.options.emplace_back(spec.option, value);
+    }
+    return true;
+}
+
+bool TileParams(const Manifest &manifest, double tileDiagonal, ResamplingParams &param, std::string &error)
+{
+    param = ResamplingParams();
+    for (const auto &option : manifest.options) {
+        const ParameterSpec *spec = gsresample::FindOption(option.first);
+        if (spec == nullptr || !gsresample::SetOption(*spec, option.second, param, error)) {
+            error = "manifest option " + option.first + " " + option.second + ": " + (spec ? error : "unknown");
+            return false;
+        }
+    }
+    if (manifest.maxErrorOfDiagonal > 0 && tileDiagonal > 0) {
+        // A tile much smaller than the bound's length needs no split: the largest valid fraction.
+        const double fraction = manifest.maxErrorOfDiagonal * manifest.diagonal / tileDiagonal;
+        param.maxErrorFraction = std::min(fraction, std::nextafter(1.0, 0.0));
+    }
+    error = param.Validate();
+    return error.empty();
+}
+
+} // namespace gstile

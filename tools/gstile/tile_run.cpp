@@ -1,0 +1,142 @@
+#include "tile_run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+#include <vcg_ext/gaussphere/oriented_point_mesh.h>
+#include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
+#include <io_surfel/surfel_records_mesh.h>
+
+#include "tile_params.h"
+
+using namespace vcg::gaussphere;
+
+namespace gstile {
+
+namespace {
+
+bool LoadTilePoints(const std::string &dir, const TileEntry &tile, std::vector<TilePoint> &points, std::string &error)
+{
+    std::vector<TilePoint> halo;
+    if (!ReadTilePoints(TilePath(dir, tile.id, ".core"), tile.corePoints, tile.coreChecksum, points, error) ||
+        !ReadTilePoints(TilePath(dir, tile.id, ".halo"), tile.haloPoints, tile.haloChecksum, halo, error))
+        return false;
+    points.insert(points.end(), halo.begin(), halo.end());
+    return true;
+}
+
+/// The points as a mesh, and the diagonal of their bounding box as the resampler measures it.
+double FillMesh(const std::vector<TilePoint> &points, OrientedPointMesh &mesh)
+{
+    auto v = vcg::tri::Allocator<OrientedPointMesh>::AddVertices(mesh, points.size());
+    std::array<float, 3> lo{{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                             std::numeric_limits<float>::max()}};
+    std::array<float, 3> hi{{-lo[0], -lo[1], -lo[2]}};
+    for (const TilePoint &p : points) {
+        v->P() = vcg::Point3f(p.position[0], p.position[1], p.position[2]);
+        v->N() = vcg::Point3f(p.normal[0], p.normal[1], p.normal[2]);
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], p.position[a]);
+            hi[a] = std::max(hi[a], p.position[a]);
+        }
+        ++v;
+    }
+    return ResamplerDiagonal(lo, hi);
+}
+
+/// The tile's points into `mesh` (their input indices into `indices`) and its parameters.
+bool LoadTile(const std::string &dir, const TileEntry &tile, OrientedPointMesh &mesh, std::vector<std::uint64_t> &indices,
+              ResamplingParams &param, const Manifest &manifest, std::string &error)
+{
+    std::vector<TilePoint> points;
+    if (!LoadTilePoints(dir, tile, points, error)) return false;
+    const double diagonal = FillMesh(points, mesh);
+    indices.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) indices[i] = points[i].index;
+    return TileParams(manifest, diagonal, param, error);
+}
+
+bool WriteResult(const std::string &path, const std::vector<Surfel> &surfels, std::string &error)
+{
+    OrientedPointMesh mesh;
+    WriteSurfels(surfels, mesh);
+    const std::vector<surfel_io::SurfelRecord> records = surfel_io::recordsFromMesh(mesh);
+    return WriteAtomically(path, [&records](std::ostream &out, std::string &reason) {
+        return surfel_io::writeSurfels(out, records, reason);
+    }, error);
+}
+
+} // namespace
+
+std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
+                               std::uint64_t corePoints)
+{
+    std::vector<std::size_t> anchor(result.surfels.size(), indices.size()); // vertex of the smallest index
+    for (std::size_t v = 0; v < indices.size(); ++v) {
+        const int s = result.representative[v];
+        if (s < 0) continue;
+        std::size_t &a = anchor[std::size_t(s)];
+        if (a == indices.size() || indices[v] < indices[a]) a = v;
+    }
+    std::vector<bool> owned(anchor.size());
+    for (std::size_t s = 0; s < anchor.size(); ++s) owned[s] = anchor[s] < corePoints;
+    return owned;
+}
+
+bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const TileEntry *tile = manifest.Find(id);
+    const std::string name = "tile " + std::to_string(id);
+    if (tile == nullptr) {
+        error = name + " is not in " + ManifestPath(dir) + " (it owns no points, or the id is wrong)";
+        return false;
+    }
+    std::vector<std::uint64_t> indices;
+    OrientedPointMesh mesh;
+    ResamplingParams param;
+    if (!LoadTile(dir, *tile, mesh, indices, param, manifest, error)) {
+        error = name + ": " + error;
+        return false;
+    }
+    ResamplingResult result;
+    try {
+        result = ResamplePointSet(mesh, param);
+    } catch (const std::exception &e) {
+        error = name + ": the resampling failed: " + e.what();
+        return false;
+    }
+    const std::vector<bool> owned = OwnedSurfels(result, indices, tile->corePoints);
+    std::vector<Surfel> kept;
+    for (std::size_t s = 0; s < owned.size(); ++s) {
+        if (!owned[s]) continue;
+        kept.push_back(result.surfels[s]);
+        figures.ownedMembers += std::uint64_t(result.surfels[s].memberCount);
+    }
+    if (!WriteResult(TilePath(dir, id, ".surfel"), kept, error)) {
+        error = name + ": " + error;
+        return false;
+    }
+    figures.id = id;
+    figures.corePoints = tile->corePoints;
+    figures.haloPoints = tile->haloPoints;
+    figures.clusters = int(result.surfels.size());
+    figures.owned = int(kept.size());
+    figures.stats = result.stats;
+    figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+}
+
+std::string FiguresLine(const TileRunFigures &f, std::size_t position, std::size_t tileCount)
+{
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "[run] %zu/%zu: tile %d, %llu core + %llu halo points -> %d surfels, %d owned (%llu points), "
+                  "level %d, %.2f s",
+                  position, tileCount, f.id, (unsigned long long)f.corePoints, (unsigned long long)f.haloPoints, f.clusters,
+                  f.owned, (unsigned long long)f.ownedMembers, f.stats.levelUsed, f.seconds);
+    return line;
+}
+
+} // namespace gstile

@@ -1,0 +1,47 @@
+// `gstile run`: one tile resampled on its own, its owned surfels written as its result.
+//
+// Ownership rule: a cluster (and its surfel) belongs to the tile whose core holds the cluster's
+// anchor, its member with the smallest input index. Every point lies in exactly one core, so
+// where the tiles cluster a region alike (far enough inside their halos) each cluster is kept by
+// exactly one tile; the rule reads integers the split stored, never float positions, so no
+// rounding can make two tiles both keep, or both drop, the same cluster.
+#ifndef GSTILE_TILE_RUN_H
+#define GSTILE_TILE_RUN_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vcg_ext/gaussphere/resampling.h>
+
+#include "manifest.h"
+#include "tile_files.h"
+
+namespace gstile {
+
+struct TileRunFigures
+{
+    int id = 0;
+    std::uint64_t corePoints = 0, haloPoints = 0;
+    int clusters = 0;             ///< surfels the resampler made from core and halo
+    int owned = 0;                ///< ... of which the tile keeps
+    std::uint64_t ownedMembers = 0; ///< points the kept surfels represent
+    double seconds = 0;
+    vcg::gaussphere::ResamplingStats stats;
+};
+
+/// For each surfel of `result`, whether its anchor is a core point: `indices` are the input
+/// indices of the tile's core points followed by its halo points, in the resampler's vertex order.
+std::vector<bool> OwnedSurfels(const vcg::gaussphere::ResamplingResult &result,
+                               const std::vector<std::uint64_t> &indices, std::uint64_t corePoints);
+
+/// Resamples tile `id` of the tile directory `dir` and writes TilePath(dir, id, ".surfel").
+/// Errors name the tile.
+bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error);
+
+/// One line of figures for a finished tile, the `position`-th (from 1) of `tileCount`.
+std::string FiguresLine(const TileRunFigures &figures, std::size_t position, std::size_t tileCount);
+
+} // namespace gstile
+
+#endif
