@@ -143,7 +143,7 @@ bool WriteTiles(const std::string &input, const std::string &dir, const SplitOpt
     return true;
 }
 
-/// Creates `dir` if missing, and removes the manifest and tile files of an earlier split there.
+/// Creates `dir` if missing, and removes the manifest and tile files of a previous split there.
 bool PrepareDirectory(const std::string &dir, std::string &error)
 {
     if (::mkdir(dir.c_str(), 0777) != 0 && errno != EEXIST) {

@@ -27,7 +27,7 @@ struct SplitOptions
 /// One progress line (`[split] pass 1: 40 % ...`).
 typedef std::function<void(const std::string &)> ProgressLine;
 
-/// Splits `input` into `dir` (created if missing; tile files and results of an earlier split
+/// Splits `input` into `dir` (created if missing; tile files and results of a previous split
 /// there are removed) and writes its manifest, also returned in `manifest`.
 bool Split(const std::string &input, const std::string &dir, const SplitOptions &options, Manifest &manifest,
            const ProgressLine &progress, std::string &error);

@@ -26,7 +26,7 @@ bool TileWriter::Flush(int tile, bool core)
 {
     Bucket &bucket = BucketOf(tile, core);
     const std::string path = TilePath(dir_, tile, core ? ".core" : ".halo");
-    // The first flush creates the file, so a file left by an earlier split is replaced.
+    // The first flush creates the file, so a file left by a previous split is replaced.
     std::FILE *file = std::fopen(path.c_str(), bucket.written == 0 ? "wb" : "ab");
     const std::size_t n = bucket.buffer.size();
     bool ok = file != nullptr && std::fwrite(bucket.buffer.data(), sizeof(TilePoint), n, file) == n;
