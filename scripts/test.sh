@@ -3,8 +3,8 @@
 # Sets up (Debian packages, MeshLab source), then runs every stage and prints one line each:
 #   release   builds everything (Release) and runs every test, including the end-to-end runs
 #             of meshlabserver and the GUI under Xvfb; CTEST ARGS go to this ctest
-#   debug     compiles the algorithm tests, the error-metric tests and gsresample as Debug (-O0)
-#   sanitize  scripts/sanitize.sh: those tests and gsresample under ASan + UBSan
+#   sanitize  scripts/sanitize.sh: the algorithm tests, the error-metric tests and gsresample as
+#             a Debug build (assertions on, -O1) under ASan + UBSan
 #   fuzz      scripts/fuzz.sh: each fuzz target for $FUZZ_SECONDS seconds (default 60)
 #   hosts     the plugins in MeshLab 2022.02 (Debian 13, in a trixie root made once by
 #             scripts/hosts/trixie_root.sh): the filter, the .surfel round trip and the surfel error
@@ -14,7 +14,8 @@
 #             MeshLab 2025.07, built once per machine from ../shared's source
 #             (scripts/hosts/meshlab2025.sh; HOSTS_2025=0 leaves 2025.07 out). The roots and the
 #             2025.07 build it needs are made (once per machine) while the stages before it run.
-# STAGES="release debug sanitize fuzz hosts" (the default) picks stages. Every stage runs even when
+#   debug     (not in the default: sanitize builds the same targets as Debug) compiles them at -O0
+# STAGES="release sanitize fuzz hosts" (the default) picks stages. Every stage runs even when
 # one before it failed; the exit status is 0 only when all passed.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -64,10 +65,10 @@ stage_sanitize() { bash "$here/scripts/sanitize.sh"; }
 stage_fuzz() { bash "$here/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"; }
 
 bash "$here/scripts/setup.sh" || exit 1
-case " ${STAGES:-release debug sanitize fuzz hosts} " in *" hosts "*) start_host_deps ;; esac
+case " ${STAGES:-release sanitize fuzz hosts} " in *" hosts "*) start_host_deps ;; esac
 summary=()
 failed=0
-for stage in ${STAGES:-release debug sanitize fuzz hosts}; do
+for stage in ${STAGES:-release sanitize fuzz hosts}; do
   start=$SECONDS
   if [ "$stage" = release ]; then stage_release "$@"; else "stage_$stage"; fi
   status=$?
