@@ -59,27 +59,18 @@ header="$out/raw/downstream_header.txt"
 # Screened Poisson's depth: the dragon has 437,645 points and details depth 8 cannot hold.
 poisson_depth() { if [ "$1" = dragon ]; then echo 9; else echo 8; fi; }
 
-# poisson_script DEPTH CONFIDENCE(true|false) > FILE.mlx: MeshLab's Screened Poisson with every
-# parameter listed (meshlabserver 2020.09 aborts otherwise), its defaults but the depth and the
-# confidence flag (per-vertex quality scales each sample's weight).
+# poisson_script DEPTH CONFIDENCE(true|false) > FILE.mlx: the Screened Poisson step of the shipped
+# sample_data/resample_and_reconstruct.mlx (every parameter listed, as meshlabserver 2020.09
+# needs; MeshLab's defaults), with the depth and the confidence flag (per-vertex quality scales
+# each sample's weight) set: the benchmark reconstructs as users do.
 poisson_script() {
-  cat <<EOF
-<!DOCTYPE FilterScript>
-<FilterScript>
- <filter name="Surface Reconstruction: Screened Poisson">
-  <Param type="RichBool" value="false" name="visibleLayer"/>
-  <Param type="RichInt" value="$1" name="depth"/>
-  <Param type="RichInt" value="5" name="fullDepth"/>
-  <Param type="RichInt" value="0" name="cgDepth"/>
-  <Param type="RichFloat" value="1.1" name="scale"/>
-  <Param type="RichFloat" value="1.5" name="samplesPerNode"/>
-  <Param type="RichFloat" value="4" name="pointWeight"/>
-  <Param type="RichInt" value="8" name="iters"/>
-  <Param type="RichBool" value="$2" name="confidence"/>
-  <Param type="RichBool" value="false" name="preClean"/>
- </filter>
-</FilterScript>
-EOF
+  echo "<!DOCTYPE FilterScript>"
+  echo "<FilterScript>"
+  sed -n '/<filter name="Surface Reconstruction: Screened Poisson">/,/<\/filter>/p' \
+    "$root/sample_data/resample_and_reconstruct.mlx" |
+    sed -e "s/value=\"[^\"]*\" name=\"depth\"/value=\"$1\" name=\"depth\"/" \
+        -e "s/value=\"[^\"]*\" name=\"confidence\"/value=\"$2\" name=\"confidence\"/"
+  echo "</FilterScript>"
 }
 
 ply_vertex_count() { grep -a -m1 '^element vertex' "$1" | awk '{print $3}'; }
