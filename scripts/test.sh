@@ -38,26 +38,39 @@ stage_debug() {
 }
 
 # What the hosts stage needs from outside the project is made once per machine, in the background
-# from the start, while the other stages run: the Debian roots (network and disk), then MeshLab
-# 2025.07 (its build runs at nice 15, in the CPU the other stages leave idle). The stage waits.
+# from the start, while the other stages run, as three jobs: the Debian 13 root (network and
+# disk), then MeshLab 2025.07 in it (its build runs at nice 15, in the CPU the other stages leave
+# idle); and the two clean roots for the package checks, side by side with them. The stage uses
+# each as soon as it is there: MeshLab 2022.02's checks and the packages first, 2025.07's last.
 start_host_deps() {
   local hosts="$here/scripts/hosts"
   mkdir -p "$build"
-  { "$hosts/trixie_root.sh" && "$hosts/clean_root.sh" bookworm && "$hosts/clean_root.sh" trixie &&
-      if [ "${HOSTS_2025:-1}" != 0 ]; then "$hosts/meshlab2025.sh"; fi; } > "$build/hosts-deps.log" 2>&1 &
-  host_deps_job=$!
+  "$hosts/trixie_root.sh" > "$build/hosts-root.log" 2>&1 &
+  root_job=$!
+  { "$hosts/clean_root.sh" bookworm && "$hosts/clean_root.sh" trixie; } > "$build/hosts-clean-roots.log" 2>&1 &
+  clean_roots_job=$!
+  if [ "${HOSTS_2025:-1}" != 0 ]; then
+    "$hosts/meshlab2025.sh" > "$build/hosts-meshlab2025.log" 2>&1 &
+    meshlab2025_job=$!
+  fi
+}
+
+# host_dep_ready JOB LOG: waits for a background job of start_host_deps; prints its log if it failed.
+host_dep_ready() { wait "$1" || { cat "$2"; return 1; }; }
+
+host_checks() { # VERSION: every end-to-end check in that MeshLab
+  local check
+  for check in filter_e2e io_e2e render_e2e gui_e2e; do "$here/scripts/hosts/$check.sh" "$1" || return 1; done
 }
 
 stage_hosts() {
-  local hosts="$here/scripts/hosts" versions=(2022.02)
-  wait "$host_deps_job" || { cat "$build/hosts-deps.log"; return 1; }
-  [ "${HOSTS_2025:-1}" = 0 ] || versions+=(2025.07)
-  local version check
-  for version in "${versions[@]}"; do
-    for check in filter_e2e io_e2e render_e2e gui_e2e; do "$hosts/$check.sh" "$version" || return 1; done
-  done
-  BUILD_DIR="$build" bash "$here/scripts/package.sh" bookworm trixie &&
-    "$hosts/deb_test.sh" bookworm && "$hosts/deb_test.sh" trixie
+  local hosts="$here/scripts/hosts"
+  host_dep_ready "$root_job" "$build/hosts-root.log" && host_checks 2022.02 &&
+    host_dep_ready "$clean_roots_job" "$build/hosts-clean-roots.log" &&
+    BUILD_DIR="$build" bash "$here/scripts/package.sh" bookworm trixie &&
+    "$hosts/deb_test.sh" bookworm && "$hosts/deb_test.sh" trixie || return 1
+  [ "${HOSTS_2025:-1}" = 0 ] ||
+    { host_dep_ready "$meshlab2025_job" "$build/hosts-meshlab2025.log" && host_checks 2025.07; }
 }
 
 stage_sanitize() { bash "$here/scripts/sanitize.sh"; }
