@@ -5,7 +5,9 @@
                            [--input INPUT.ply [--split-args "..."]] [--gstile PATH]
 
 With --input the input is split into TILEDIR first (`gstile split`, on this machine); else
-TILEDIR holds a split already. Each task runs `gstile run TILEDIR ID` on a worker, which must see
+TILEDIR holds a split already. With a target count in the split, a first round of tasks runs
+`gstile probe TILEDIR ID` and this machine `gstile share TILEDIR` (docs/tiling.md). Each task
+runs `gstile run TILEDIR ID` on a worker, which must see
 TILEDIR and the gstile binary at the same paths (a shared folder). Without --scheduler a local
 cluster of --workers processes is started. A worker lost in the middle of a task is replaced by
 the scheduler, which runs the task again elsewhere (a tile's result appears only once complete,
@@ -30,10 +32,10 @@ class TileFailed(Exception):
     """A tile's run ended with an error; the message names the tile."""
 
 
-def run_tile(gstile, tile_dir, tile_id, threads):
-    """The task: one `gstile run`, its figures line on success."""
+def run_tile(gstile, command, tile_dir, tile_id, threads):
+    """The task: one `gstile run` (or `probe`), its figures line on success."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    proc = subprocess.run([gstile, "run", tile_dir, str(tile_id)], capture_output=True, text=True, env=env)
+    proc = subprocess.run([gstile, command, tile_dir, str(tile_id)], capture_output=True, text=True, env=env)
     if proc.returncode != 0:
         reason = proc.stderr.strip().replace("gstile: error: ", "") or f"exit status {proc.returncode}"
         raise TileFailed(f"tile {tile_id} failed: {reason}")
@@ -58,14 +60,15 @@ def check_call(command):
         sys.exit(f"gstile_dask: error: {' '.join(map(shlex.quote, command))} failed")
 
 
-def tile_ids(tile_dir):
+def read_manifest(tile_dir):
     with open(os.path.join(tile_dir, "manifest.json")) as manifest:
-        return [tile["id"] for tile in json.load(manifest)["tiles"]]
+        return json.load(manifest)
 
 
-def run_tiles(client, gstile, tile_dir, ids, threads):
+def run_tiles(client, gstile, command, tile_dir, ids, threads):
     """Submits every tile, prints each one's line as it completes; stops at the first failure."""
-    futures = [client.submit(run_tile, gstile, tile_dir, i, threads, key=f"gstile-tile-{i}", pure=False) for i in ids]
+    futures = [client.submit(run_tile, gstile, command, tile_dir, i, threads, key=f"gstile-{command}-{i}", pure=False)
+               for i in ids]
     done = 0
     for future in as_completed(futures):
         try:
@@ -74,7 +77,7 @@ def run_tiles(client, gstile, tile_dir, ids, threads):
             client.cancel(futures)
             sys.exit(f"gstile_dask: error: {failure}")
         done += 1
-        print(f"[dask] {done}/{len(ids)} done | {line}", flush=True)
+        print(f"[dask] {command} {done}/{len(ids)} done | {line}", flush=True)
 
 
 def main():
@@ -83,7 +86,8 @@ def main():
     tile_dir = os.path.abspath(args.tile_dir)
     if args.input:
         check_call([gstile, "split", args.input, tile_dir] + shlex.split(args.split_args))
-    ids = tile_ids(tile_dir)
+    manifest = read_manifest(tile_dir)
+    ids = [tile["id"] for tile in manifest["tiles"]]
     cluster = None
     if args.scheduler:
         client = Client(args.scheduler)
@@ -93,7 +97,10 @@ def main():
     print(f"[dask] {len(ids)} tiles on {len(client.scheduler_info()['workers'])} worker(s) of {client.scheduler.address}",
           flush=True)
     try:
-        run_tiles(client, gstile, tile_dir, ids, args.threads)
+        if manifest["target_count"] > 0:
+            run_tiles(client, gstile, "probe", tile_dir, ids, args.threads)
+            check_call([gstile, "share", tile_dir])
+        run_tiles(client, gstile, "run", tile_dir, ids, args.threads)
     finally:
         client.close()
         if cluster is not None:

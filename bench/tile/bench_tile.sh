@@ -2,6 +2,7 @@
 # Tiled resampling at scale (bench/tile/README.md):
 #   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
+#   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at three target counts, whole vs tiled
 #                                               # (PARTS=n: n x 20 million instead of 10)
 # Inputs: the dragon densified by gsscale (bench/scale); 200 million = ten samplings of 20 million
 # (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
@@ -47,6 +48,19 @@ compare() { # POINTS TILE_POINTS
   rm -rf "tiles_$1"
 }
 
+target() { # the dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo
+  local dragon=$here/../shared/data/dragon.ply count
+  for count in 10000 40000 100000; do
+    measure "whole_target_$count" "$bin/tools/gsresample/gsresample" "$dragon" "whole_target_$count.surfel" --target "$count"
+    measure "tiled_target_$count" "$gstile" all "$dragon" "tiled_target_$count.surfel" --target "$count" \
+      --tile-points 150000 --tile-dir "tiles_target_$count"
+    nice "$bin/tools/gstile/gstile_compare" "tiles_target_$count" "whole_target_$count.surfel" \
+      "tiled_target_$count.surfel" > "compare_target_$count.txt"
+    sed "s/^/target_$count /" "compare_target_$count.txt"
+    rm -rf "tiles_target_$count"
+  done
+}
+
 big() {
   local count=${PARTS:-10} parts=() input
   for seed in $(seq "$count"); do parts+=("$(generate 20000000 "$seed")"); done
@@ -72,5 +86,6 @@ big() {
 case $stage in
   compare) { compare 5000000 1000000; compare 20000000 4000000; } | tee compare.txt ;;
   big) big | tee big.txt ;;
-  *) echo "usage: $0 WORK_DIR compare|big" >&2; exit 2 ;;
+  target) target | tee target.txt ;;
+  *) echo "usage: $0 WORK_DIR compare|big|target" >&2; exit 2 ;;
 esac

@@ -1,5 +1,6 @@
-// gstile's parts (tools/gstile): the grid's ownership of points, the ownership of clusters, a
-// split-run-merge of the bunny against its whole run, and what a damaged tile directory gives.
+// gstile's parts (tools/gstile): the grid's ownership of points, the ownership of clusters, the
+// sharing of a target, a split-run-merge of the bunny against its whole run (at the level and
+// with a target), and what a damaged tile directory gives.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <tools/gsresample/ply_input.h>
 #include <tools/gstile/merge.h>
 #include <tools/gstile/split.h>
+#include <tools/gstile/target_share.h>
 #include <tools/gstile/tile_run.h>
 
 using namespace gstile;
@@ -161,6 +163,72 @@ TEST_F(BunnyTiles, ARerunGivesTheSameBytes)
     std::ifstream second(result, std::ios::binary);
     const std::string after((std::istreambuf_iterator<char>(second)), std::istreambuf_iterator<char>());
     EXPECT_EQ(before, after);
+}
+
+TEST(TargetShare, SharesSumToTheTargetInProportionToOwnedClusters)
+{
+    Manifest manifest;
+    manifest.targetCount = 7;
+    manifest.tiles.resize(4);
+    const std::uint64_t points[4] = {1000, 1000, 1000, 5};
+    for (int t = 0; t < 4; ++t) {
+        manifest.tiles[t].id = 10 + t;
+        manifest.tiles[t].corePoints = points[t];
+    }
+    // Owned 10 : 30 : 0 : 30 gives the exact shares 1, 3, 0, 3 of 7; made/owned 2, 1.5, -, 4.
+    const std::vector<TileProbe> probes = {{10, 20, 10}, {11, 45, 30}, {12, 5, 0}, {13, 120, 30}};
+    const std::vector<TileShare> shares = ShareTarget(manifest, probes);
+    ASSERT_EQ(shares.size(), 4u);
+    EXPECT_EQ(shares[0].owned, 1u);
+    EXPECT_EQ(shares[1].owned, 3u);
+    EXPECT_EQ(shares[2].owned, 0u);
+    EXPECT_EQ(shares[3].owned, 3u);
+    EXPECT_EQ(shares[0].target, 2u);
+    EXPECT_EQ(shares[1].target, 5u) << "3 x 1.5 = 4.5, rounded";
+    EXPECT_EQ(shares[2].target, 0u) << "a tile that owns nothing runs nothing";
+    EXPECT_EQ(shares[3].target, 5u) << "3 x 4 = 12, capped by the tile's 5 points";
+    EXPECT_EQ(shares[1].id, 11);
+
+    manifest.targetCount = 8; // exact shares 1.14, 3.43, 0, 3.43: the largest remainders, in tile order, get one each
+    const std::vector<TileShare> more = ShareTarget(manifest, probes);
+    EXPECT_EQ(more[0].owned + more[1].owned + more[2].owned + more[3].owned, 8u);
+    EXPECT_EQ(more[1].owned, 4u);
+    EXPECT_EQ(more[3].owned, 3u);
+}
+
+TEST(TiledTarget, TheBunnysTilesMeetATargetSharedByDetail)
+{
+    const std::string dir = ::testing::TempDir() + "gstile_bunny_target";
+    SplitOptions options;
+    options.tilePoints = 20000;
+    options.param.targetCount = 3000;
+    Manifest manifest;
+    std::string error;
+    ASSERT_TRUE(Split(kBunny, dir, options, manifest, [](const std::string &) {}, error)) << error;
+    ASSERT_EQ(manifest.targetCount, 3000u);
+    TileRunFigures figures;
+    ASSERT_FALSE(RunTile(dir, manifest, manifest.tiles[0].id, figures, error)) << "a run before the share";
+    EXPECT_NE(error.find("gstile probe"), std::string::npos) << error;
+
+    std::vector<TileProbe> probes(manifest.tiles.size());
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        ASSERT_TRUE(ProbeTile(dir, manifest, manifest.tiles[t].id, probes[t], error)) << error;
+    std::vector<TileShare> shares;
+    ASSERT_TRUE(WriteShares(dir, manifest, shares, error)) << error;
+    std::uint64_t shared = 0;
+    for (std::size_t t = 0; t < shares.size(); ++t) {
+        shared += shares[t].owned;
+        // By detail: a tile owning more clusters at the level gets at least as large a share.
+        for (std::size_t u = 0; u < shares.size(); ++u)
+            if (probes[t].owned > probes[u].owned) EXPECT_GE(shares[t].owned, shares[u].owned);
+    }
+    EXPECT_EQ(shared, 3000u);
+    for (const TileEntry &t : manifest.tiles) ASSERT_TRUE(RunTile(dir, manifest, t.id, figures, error)) << error;
+    MergeFigures merged;
+    ASSERT_TRUE(Merge(dir, manifest, dir + "/merged.surfel", merged, error)) << error;
+    // Tiles of 20,000 points whose halos are larger than their cores: within 2 %.
+    EXPECT_NEAR(double(merged.surfels), 3000.0, 60.0);
+    EXPECT_NEAR(double(merged.members), double(manifest.points), 0.005 * manifest.points);
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 //
 //   gstile split INPUT.ply TILEDIR [--tile-points N] [--halo-spacings X] [gsresample options]
 //   gstile run TILEDIR TILE_ID
+//   gstile probe TILEDIR TILE_ID, gstile share TILEDIR   (with a target, before run: target_share.h)
 //   gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply
 //   gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]
 //   gstile tiles TILEDIR
@@ -26,13 +27,16 @@ namespace {
 const char *const kUsage =
     "usage: gstile split INPUT.ply TILEDIR [--tile-points N] [--halo-spacings X] [OPTION VALUE]...\n"
     "       gstile run TILEDIR TILE_ID\n"
+    "       gstile probe TILEDIR TILE_ID, then gstile share TILEDIR   (with a target, before run)\n"
     "       gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply\n"
     "       gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]\n"
     "       gstile tiles TILEDIR   (the ids of the tiles, one a line)\n"
     "split streams a binary little-endian PLY (x y z nx ny nz) into tiles of about N points with\n"
     "their halo (default 4000000; a run takes up to about 200 B a point), X sample spacings wide\n"
     "(default 24); run resamples one tile and keeps the surfels it owns; merge concatenates them;\n"
-    "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). gsresample's options:\n";
+    "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). With --target or\n"
+    "--percentage, probe runs each tile at the level and share divides the count by their detail.\n"
+    "gsresample's options:\n";
 
 struct UsageError
 {
@@ -101,8 +105,33 @@ int Fail(const std::string &error)
     return 1;
 }
 
+int WriteAndReportShares(const std::string &dir, const Manifest &manifest)
+{
+    std::vector<TileShare> shares;
+    std::string error;
+    if (!WriteShares(dir, manifest, shares, error)) return Fail(error);
+    std::uint64_t runCount = 0;
+    for (const TileShare &share : shares) runCount += share.target;
+    char line[200];
+    std::snprintf(line, sizeof line, "[share] %llu surfels over %zu tiles by their detail (%llu made with halos)",
+                  (unsigned long long)manifest.targetCount, shares.size(), (unsigned long long)runCount);
+    PrintLine(line);
+    return 0;
+}
+
 int RunAll(const std::string &dir, const Manifest &manifest)
 {
+    for (std::size_t t = 0; manifest.targetCount > 0 && t < manifest.tiles.size(); ++t) {
+        TileProbe probe;
+        std::string error;
+        if (!ProbeTile(dir, manifest, manifest.tiles[t].id, probe, error)) return Fail(error);
+        char line[160];
+        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, %llu clusters, %llu owned", t + 1,
+                      manifest.tiles.size(), probe.id, (unsigned long long)probe.clusters, (unsigned long long)probe.owned);
+        PrintLine(line);
+    }
+    if (manifest.targetCount > 0)
+        if (const int status = WriteAndReportShares(dir, manifest)) return status;
     for (std::size_t t = 0; t < manifest.tiles.size(); ++t) {
         TileRunFigures figures;
         std::string error;
@@ -158,11 +187,23 @@ int Dispatch(const std::string &command, int argc, char **argv)
         PrintLine(FiguresLine(figures, std::size_t(manifest.Find(id) - manifest.tiles.data()) + 1, manifest.tiles.size()));
         return 0;
     }
+    if (command == "probe") {
+        Expect(paths.size() == 2, "TILEDIR TILE_ID");
+        TileProbe probe;
+        if (!ProbeTile(paths[0], manifest, TileId(paths[1]), probe, error)) return Fail(error);
+        std::printf("tile %d: %llu clusters, %llu owned\n", probe.id, (unsigned long long)probe.clusters,
+                    (unsigned long long)probe.owned);
+        return 0;
+    }
+    if (command == "share") {
+        Expect(paths.size() == 1, "TILEDIR");
+        return WriteAndReportShares(paths[0], manifest);
+    }
     if (command == "merge") {
         Expect(paths.size() == 2, "TILEDIR OUTPUT");
         return MergeTiles(paths[0], manifest, paths[1]);
     }
-    Expect(command == "tiles" && paths.size() == 1, "a command: split, run, merge, all or tiles");
+    Expect(command == "tiles" && paths.size() == 1, "a command: split, run, probe, share, merge, all or tiles");
     for (const TileEntry &tile : manifest.tiles) std::printf("%d\n", tile.id);
     return 0;
 }

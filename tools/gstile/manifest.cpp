@@ -10,7 +10,7 @@ namespace gstile {
 
 namespace {
 
-constexpr const char *kFormat = "gstile-manifest 1";
+constexpr const char *kFormat = "gstile-manifest 2";
 using nlohmann::json;
 
 json TilesToJson(const std::vector<TileEntry> &tiles)
@@ -39,6 +39,7 @@ json ToJson(const Manifest &m)
             {"grid", {{"origin", m.grid.origin}, {"edge", m.grid.edge}, {"dims", m.grid.dims}}},
             {"options", options},
             {"max_error_of_diagonal", m.maxErrorOfDiagonal},
+            {"target_count", m.targetCount},
             {"tiles", TilesToJson(m.tiles)}};
 }
 
@@ -61,6 +62,7 @@ void FromJson(const json &j, Manifest &m)
     m.options.clear();
     for (const json &o : j.at("options")) m.options.emplace_back(o.at(0).get<std::string>(), o.at(1).get<std::string>());
     m.maxErrorOfDiagonal = j.at("max_error_of_diagonal").get<double>();
+    m.targetCount = j.at("target_count").get<std::uint64_t>();
     m.tiles.clear();
     for (const json &t : j.at("tiles")) {
         TileEntry e;

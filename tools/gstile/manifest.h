@@ -32,9 +32,10 @@ struct Manifest
     double halo = 0;           ///< ... in model units
     TileGrid grid;
     /// gsresample's options for every tile's run, as text (`--weight-width` fixed to the whole
-    /// input's h, a target count turned into a percentage, no error bound: see maxErrorOfDiagonal).
+    /// input's h, no target: see targetCount, no error bound: see maxErrorOfDiagonal).
     std::vector<std::pair<std::string, std::string>> options;
     double maxErrorOfDiagonal = 0; ///< the error bound as a fraction of the whole input's diagonal (0 = off)
+    std::uint64_t targetCount = 0; ///< the exact count wanted of the whole input, shared out by target_share.h (0 = off)
     std::vector<TileEntry> tiles;  ///< the tiles that own points, by id
 
     const TileEntry *Find(int id) const;

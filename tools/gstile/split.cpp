@@ -12,6 +12,7 @@
 
 #include "point_stream.h"
 #include "spacing.h"
+#include "target_share.h"
 #include "tile_params.h"
 #include "tile_writer.h"
 
@@ -143,7 +144,7 @@ bool WriteTiles(const std::string &input, const std::string &dir, const SplitOpt
     return true;
 }
 
-/// Creates `dir` if missing, and removes the manifest and tile files of a previous split there.
+/// Creates `dir` if missing, and removes the manifest, shares and tile files of a previous split there.
 bool PrepareDirectory(const std::string &dir, std::string &error)
 {
     if (::mkdir(dir.c_str(), 0777) != 0 && errno != EEXIST) {
@@ -151,6 +152,7 @@ bool PrepareDirectory(const std::string &dir, std::string &error)
         return false;
     }
     std::remove(ManifestPath(dir).c_str());
+    std::remove(SharesPath(dir).c_str());
     DIR *d = ::opendir(dir.c_str());
     if (d == nullptr) {
         error = "cannot open " + dir + ": " + std::strerror(errno);

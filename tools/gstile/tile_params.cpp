@@ -1,5 +1,6 @@
 #include "tile_params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -27,14 +28,19 @@ bool SetTileOptions(const ResamplingParams &param, Manifest &manifest, std::stri
     if (tile.weightWidth == 0) tile.weightWidth = 0.01 * manifest.diagonal;
     manifest.maxErrorOfDiagonal = tile.maxErrorFraction;
     tile.maxErrorFraction = 0;
-    if (tile.targetCount > 0) {
-        if (std::uint64_t(tile.targetCount) > manifest.points) {
-            error = "--target " + std::to_string(tile.targetCount) + " exceeds the " + std::to_string(manifest.points) +
+    manifest.targetCount = 0;
+    if (tile.SizeMode() == SizeControl::TargetCount) {
+        manifest.targetCount = tile.targetCount > 0
+                                   ? std::uint64_t(tile.targetCount)
+                                   : std::max<std::uint64_t>(1, std::uint64_t(std::llround(
+                                                                    tile.targetPercentage / 100.0 * double(manifest.points))));
+        if (manifest.targetCount > manifest.points) {
+            error = "--target " + std::to_string(manifest.targetCount) + " exceeds the " + std::to_string(manifest.points) +
                     " usable points of the input";
             return false;
         }
-        tile.targetPercentage = 100.0 * tile.targetCount / double(manifest.points);
-        tile.targetCount = 0;
+        tile.targetCount = 0; // each tile's count comes from its share (target_share.h)
+        tile.targetPercentage = 0;
     }
     manifest.options.clear();
     for (const ParameterSpec &spec : ParameterTable()) {

@@ -4,8 +4,8 @@
 // Two parameters are relative to the input's bounding box and would otherwise follow each tile's
 // own: the weight width h (1 % of the diagonal by default) is fixed in model units, and the
 // error bound, a fraction of the whole diagonal, becomes the matching fraction of each tile's.
-// A target count becomes the percentage it is of the whole input's points, shared out over the
-// tiles in proportion to their points.
+// A target count (or percentage) is kept whole in the manifest and shared out over the tiles by
+// their detail (target_share.h).
 #ifndef GSTILE_TILE_PARAMS_H
 #define GSTILE_TILE_PARAMS_H
 
@@ -22,7 +22,7 @@ namespace gstile {
 /// whole run uses, to the bit.
 double ResamplerDiagonal(const std::array<float, 3> &boxMin, const std::array<float, 3> &boxMax);
 
-/// Fills manifest.options and manifest.maxErrorOfDiagonal from the user's `param`, for an input
+/// Fills manifest.options, maxErrorOfDiagonal and targetCount from the user's `param`, for an input
 /// of manifest.points points and diagonal manifest.diagonal. False when a target exceeds the points.
 bool SetTileOptions(const vcg::gaussphere::ResamplingParams &param, Manifest &manifest, std::string &error);
 

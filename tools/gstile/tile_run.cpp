@@ -1,5 +1,6 @@
 #include "tile_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -84,46 +85,95 @@ std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector
     return owned;
 }
 
+namespace {
+
+/// One tile resampled: its points' input indices, the result and which surfels it owns.
+struct ResampledTile
+{
+    std::vector<std::uint64_t> indices;
+    ResamplingResult result;
+    std::vector<bool> owned;
+};
+
+/// Resamples `tile` with the manifest's parameters, to `targetCount` clusters when it is not 0.
+bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEntry &tile, std::uint64_t targetCount,
+                  ResampledTile &out, std::string &error)
+{
+    OrientedPointMesh mesh;
+    ResamplingParams param;
+    if (!LoadTile(dir, tile, mesh, out.indices, param, manifest, error)) return false;
+    param.targetCount = int(targetCount);
+    try {
+        out.result = ResamplePointSet(mesh, param);
+    } catch (const std::exception &e) {
+        error = std::string("the resampling failed: ") + e.what();
+        return false;
+    }
+    out.owned = OwnedSurfels(out.result, out.indices, tile.corePoints);
+    return true;
+}
+
+/// The manifest's entry of tile `id`, or null with an error naming the tile.
+const TileEntry *FindTile(const std::string &dir, const Manifest &manifest, int id, std::string &error)
+{
+    const TileEntry *tile = manifest.Find(id);
+    if (tile == nullptr)
+        error = "tile " + std::to_string(id) + " is not in " + ManifestPath(dir) + " (it owns no points, or the id is wrong)";
+    return tile;
+}
+
+} // namespace
+
+bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, TileProbe &probe, std::string &error)
+{
+    const TileEntry *entry = FindTile(dir, manifest, id, error);
+    if (entry == nullptr) return false;
+    ResampledTile tile;
+    bool ok = ResampleTile(dir, manifest, *entry, 0, tile, error);
+    if (ok) {
+        probe.id = id;
+        probe.clusters = tile.owned.size();
+        probe.owned = std::uint64_t(std::count(tile.owned.begin(), tile.owned.end(), true));
+        ok = WriteProbe(dir, probe, error);
+    }
+    if (!ok) error = "tile " + std::to_string(id) + ": " + error;
+    return ok;
+}
+
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error)
 {
     const auto start = std::chrono::steady_clock::now();
-    const TileEntry *tile = manifest.Find(id);
     const std::string name = "tile " + std::to_string(id);
-    if (tile == nullptr) {
-        error = name + " is not in " + ManifestPath(dir) + " (it owns no points, or the id is wrong)";
-        return false;
-    }
-    std::vector<std::uint64_t> indices;
-    OrientedPointMesh mesh;
-    ResamplingParams param;
-    if (!LoadTile(dir, *tile, mesh, indices, param, manifest, error)) {
+    const TileEntry *entry = FindTile(dir, manifest, id, error);
+    if (entry == nullptr) return false;
+    TileShare share;
+    if (manifest.targetCount > 0 && !ReadShare(dir, id, share, error)) {
         error = name + ": " + error;
         return false;
     }
-    ResamplingResult result;
-    try {
-        result = ResamplePointSet(mesh, param);
-    } catch (const std::exception &e) {
-        error = name + ": the resampling failed: " + e.what();
+    ResampledTile tile;
+    // With a target, a tile whose share is 0 keeps nothing and needs no run.
+    const bool run = manifest.targetCount == 0 || share.target > 0;
+    if (run && !ResampleTile(dir, manifest, *entry, share.target, tile, error)) {
+        error = name + ": " + error;
         return false;
     }
-    const std::vector<bool> owned = OwnedSurfels(result, indices, tile->corePoints);
     std::vector<Surfel> kept;
-    for (std::size_t s = 0; s < owned.size(); ++s) {
-        if (!owned[s]) continue;
-        kept.push_back(result.surfels[s]);
-        figures.ownedMembers += std::uint64_t(result.surfels[s].memberCount);
+    for (std::size_t s = 0; s < tile.owned.size(); ++s) {
+        if (!tile.owned[s]) continue;
+        kept.push_back(tile.result.surfels[s]);
+        figures.ownedMembers += std::uint64_t(tile.result.surfels[s].memberCount);
     }
     if (!WriteResult(TilePath(dir, id, ".surfel"), kept, error)) {
         error = name + ": " + error;
         return false;
     }
     figures.id = id;
-    figures.corePoints = tile->corePoints;
-    figures.haloPoints = tile->haloPoints;
-    figures.clusters = int(result.surfels.size());
+    figures.corePoints = entry->corePoints;
+    figures.haloPoints = entry->haloPoints;
+    figures.clusters = int(tile.result.surfels.size());
     figures.owned = int(kept.size());
-    figures.stats = result.stats;
+    figures.stats = tile.result.stats;
     figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
 }

@@ -15,6 +15,7 @@
 #include <vcg_ext/gaussphere/resampling.h>
 
 #include "manifest.h"
+#include "target_share.h"
 #include "tile_files.h"
 
 namespace gstile {
@@ -35,9 +36,12 @@ struct TileRunFigures
 std::vector<bool> OwnedSurfels(const vcg::gaussphere::ResamplingResult &result,
                                const std::vector<std::uint64_t> &indices, std::uint64_t corePoints);
 
-/// Resamples tile `id` of the tile directory `dir` and writes TilePath(dir, id, ".surfel").
-/// Errors name the tile.
+/// Resamples tile `id` of the tile directory `dir` and writes TilePath(dir, id, ".surfel"). With a
+/// target (manifest.targetCount), to the count of its share (ReadShare). Errors name the tile.
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error);
+
+/// With a target: resamples tile `id` at the level and writes its probe (target_share.h).
+bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, TileProbe &probe, std::string &error);
 
 /// One line of figures for a finished tile, the `position`-th (from 1) of `tileCount`.
 std::string FiguresLine(const TileRunFigures &figures, std::size_t position, std::size_t tileCount);
