@@ -22,6 +22,8 @@ packages=(
   libcgal-dev python3 python3-matplotlib python3-numpy time hyperfine
   # distributed tiled runs (scripts/gstile_dask.py)
   python3-distributed
+  # the Debian roots of the hosts stage (MeshLab 2022.02 and 2025.07, the package checks)
+  mmdebstrap
 )
 
 missing=()

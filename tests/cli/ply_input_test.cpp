@@ -60,6 +60,15 @@ protected:
         for (char c : error) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << "non-printable in: " << error;
     }
 
+    /// The file is read, with `vertices` points.
+    void ExpectRead(const std::string &bytes, int vertices)
+    {
+        OrientedPointMesh mesh;
+        std::string error;
+        ASSERT_TRUE(gsresample::ReadOrientedPoints(Write(bytes), mesh, error)) << error;
+        EXPECT_EQ(mesh.vn, vertices);
+    }
+
     std::vector<std::string> files_;
 };
 
@@ -127,6 +136,30 @@ TEST_F(PlyInput, FaceListsVcglibCannotHoldAreRefused)
                   "face list property 'color' is not supported");
     ExpectRefused(Header("ascii", "3", "element tristrips 1\nproperty list int int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n",
                   "element 'tristrips' is not supported");
+}
+
+TEST_F(PlyInput, ListsVcglibSkipsThroughAFixedBufferAreRefusedInBinaryFiles)
+{
+    // vcglib skips an unread binary list through 512 bytes, its count read as one byte: 185 ints
+    // would be written past that buffer.
+    const std::string vertices(3 * 24, '\0');
+    const std::string longList = std::string(1, char(185)) + std::string(740, 'A');
+    ExpectRefused(Header("binary_little_endian", "3", "element extra 1\nproperty list uchar int data\n") + vertices + longList,
+                  "list property 'data' of element 'extra' ('uchar' counts, 'int' items) is not supported in binary files");
+    ExpectRefused(Header("binary_little_endian", "3", "element face 0\nproperty list uint uchar tags\n") + vertices,
+                  "list property 'tags' of element 'face' ('uint' counts, 'uchar' items)");
+}
+
+TEST_F(PlyInput, ListsVcglibSkipsSafelyAreRead)
+{
+    // One-byte counts of items of at most two bytes fit the buffer; ASCII lists are skipped item by item.
+    std::string vertices;
+    const float rows[3][6] = {{0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1}};
+    vertices.append(reinterpret_cast<const char *>(rows), sizeof rows);
+    ExpectRead(Header("binary_little_endian", "3", "element extra 1\nproperty list uchar short data\n") + vertices +
+                   std::string(1, char(255)) + std::string(510, 'A'),
+               3);
+    ExpectRead(Header("ascii", "3", "element extra 1\nproperty list uchar int data\n") + AsciiRows(3) + "3 7 8 9\n", 3);
 }
 
 TEST_F(PlyInput, MissingPropertiesAreRefused)

@@ -253,9 +253,30 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
     }
 }
 
+/// Whether ImporterPLY reads list `property` of `element` (the face corners) rather than skipping it.
+bool IsCornerList(const HeaderElement &element, const HeaderProperty &property)
+{
+    return element.name == "face" && (property.name == "vertex_indices" || property.name == "vertex_index");
+}
+
+/// A list ImporterPLY skips in a binary file goes through a 512-byte buffer, its count read as one
+/// byte whatever its declared type: safe for one-byte counts of items of at most 2 bytes.
+bool CheckSkippedList(const PlyHeader &header, const HeaderElement &element, const HeaderProperty &property,
+                      std::string &error)
+{
+    if (!header.binary || IsCornerList(element, property) ||
+        (TypeSize(property.countType) == 1 && TypeSize(property.type) <= 2))
+        return true;
+    error = "list property " + Quote(property.name) + " of element " + Quote(element.name) + " (" +
+            Quote(property.countType) + " counts, " + Quote(property.type) +
+            " items) is not supported in binary files: remove it, or save the file as ASCII";
+    return false;
+}
+
 /// What this reader needs and what vcglib's ImporterPLY handles safely: it reads lists into
 /// fixed-size buffers (face corners into 512 ints, face colours into 32 floats, range grid
-/// points into 5 ints) and tristrips into a buffer sized by each record's count.
+/// points into 5 ints), tristrips into a buffer sized by each record's count, and skips the
+/// lists it does not read through a fixed buffer (CheckSkippedList).
 bool CheckElements(const PlyHeader &header, std::string &error)
 {
     const HeaderElement *vertex = nullptr;
@@ -269,6 +290,8 @@ bool CheckElements(const PlyHeader &header, std::string &error)
             error = "element " + Quote(e.name) + " is not supported";
             return false;
         }
+        for (const HeaderProperty &p : e.properties)
+            if (p.isList && e.name != "vertex" && !CheckSkippedList(header, e, p, error)) return false;
         if (e.name != "face") continue;
         for (const HeaderProperty &p : e.properties) {
             if (!p.isList) continue;
@@ -324,8 +347,7 @@ bool CheckElements(const PlyHeader &header, std::string &error)
 /// each record and makes a triangle of it).
 int MinimumValues(const HeaderElement &element, const HeaderProperty &property)
 {
-    const bool corners = element.name == "face" && (property.name == "vertex_indices" || property.name == "vertex_index");
-    return property.isList && corners ? 4 : 1;
+    return property.isList && IsCornerList(element, property) ? 4 : 1;
 }
 
 /// The body must hold at least the smallest records the counts announce: a binary record
