@@ -15,11 +15,9 @@ namespace gstile {
 
 double ResamplerDiagonal(const std::array<float, 3> &boxMin, const std::array<float, 3> &boxMax)
 {
-    const vcg::Point3f lo(boxMin[0], boxMin[1], boxMin[2]), hi(boxMax[0], boxMax[1], boxMax[2]);
-    const double scale = UnitScaleOf((vcg::Point3d::Construct(hi) - vcg::Point3d::Construct(lo)).Norm());
-    const vcg::Box3f unit(vcg::Point3f::Construct(vcg::Point3d::Construct(lo) * scale),
-                          vcg::Point3f::Construct(vcg::Point3d::Construct(hi) * scale));
-    return double(unit.Diag()) / scale;
+    const vcg::Box3f box(vcg::Point3f(boxMin[0], boxMin[1], boxMin[2]), vcg::Point3f(boxMax[0], boxMax[1], boxMax[2]));
+    const UnitScaleBox unit = MeasureUnitScale(box);
+    return unit.diagonal / unit.scale;
 }
 
 bool SetTileOptions(const ResamplingParams &param, Manifest &manifest, std::string &error)

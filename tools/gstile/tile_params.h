@@ -17,9 +17,8 @@
 
 namespace gstile {
 
-/// The bounding-box diagonal, in model units, as ResamplePointSet measures it: the float box of
-/// the points brought to unit scale (usable_points.h), so that h derived from it is the one the
-/// whole run uses, to the bit.
+/// The bounding-box diagonal, in model units, as ResamplePointSet measures it (MeasureUnitScale in
+/// usable_points.h), so that h derived from it is the one the whole run uses, to the bit.
 double ResamplerDiagonal(const std::array<float, 3> &boxMin, const std::array<float, 3> &boxMax);
 
 /// Fills manifest.options, maxErrorOfDiagonal and targetCount from the user's `param`, for an input

@@ -251,11 +251,12 @@ void ReadPoints(const MeshType &mesh, Run &run)
     stats.skippedNormals = counts.badNormal;
     stats.skippedCount = counts.badPosition + counts.badNormal;
     if (counts.usable < 2) throw std::invalid_argument(TooFewPointsMessage(counts));
-    run.scale = UnitScaleOf(BoxDiagonal(run.points));
-    ScalePoints(run.scale, run.points);
-    vcg::Box3f box; // in float, as every length derived from it: exact multiples of the model's
+    vcg::Box3f box;
     for (const auto &p : run.points) box.Add(p);
-    run.diagonal = box.Diag();
+    const UnitScaleBox unit = MeasureUnitScale(box);
+    run.scale = unit.scale;
+    ScalePoints(run.scale, run.points);
+    run.diagonal = unit.diagonal;
     stats.diagonal = run.diagonal / run.scale;
     run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
 }

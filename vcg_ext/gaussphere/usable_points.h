@@ -120,14 +120,6 @@ UsablePointCounts ReadUsablePoints(const MeshType &mesh, PointArray &points, Poi
     return counts;
 }
 
-/// Bounding-box diagonal of `points`, in double (a float box of coordinates near 3e38 overflows).
-inline double BoxDiagonal(const PointArray &points)
-{
-    vcg::Box3d box;
-    for (const auto &p : points) box.Add(vcg::Point3d::Construct(p));
-    return points.empty() ? 0.0 : box.Diag();
-}
-
 /// The power of two 2^e that brings `diagonal` into [1, 2); 1 for a zero or non-finite diagonal.
 inline double UnitScaleOf(double diagonal)
 {
@@ -135,6 +127,26 @@ inline double UnitScaleOf(double diagonal)
     int exponent = 0;
     std::frexp(diagonal, &exponent); // diagonal = m 2^exponent, m in [0.5, 1)
     return std::ldexp(1.0, 1 - exponent);
+}
+
+/// How the resampler measures points whose bounding box is `box` (model units).
+struct UnitScaleBox
+{
+    double scale = 1;    ///< UnitScaleOf the box's diagonal (taken in double: a float box near 3e38 overflows)
+    double diagonal = 0; ///< the diagonal of the box at that scale, computed in float like every length
+                         ///< derived from it (exact multiples of the model's, so that a part of an input
+                         ///< measures as it does inside the whole)
+};
+
+inline UnitScaleBox MeasureUnitScale(const vcg::Box3f &box)
+{
+    UnitScaleBox measured;
+    if (box.IsNull()) return measured;
+    const vcg::Point3d lo = vcg::Point3d::Construct(box.min), hi = vcg::Point3d::Construct(box.max);
+    measured.scale = UnitScaleOf((hi - lo).Norm());
+    const vcg::Box3f unit(vcg::Point3f::Construct(lo * measured.scale), vcg::Point3f::Construct(hi * measured.scale));
+    measured.diagonal = unit.Diag();
+    return measured;
 }
 
 /// points *= scale, exactly for a power of two whose products stay normal floats.
