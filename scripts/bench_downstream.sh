@@ -20,8 +20,11 @@
 #
 # Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), SAMPLES (area samples
 # per mesh for the distance, default 1,000,000), OURS_WEIGHTS (the weightings of ours to
-# reconstruct, space-separated among quality, none, area; default quality: rows ours-none and
-# ours-area are added for the others), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
+# reconstruct, space-separated among quality, none, area, nofit; default quality: rows ours-none,
+# ours-area and ours-nofit are added for the others; nofit is ours with --fit-offsets 0,
+# unweighted: the surfels at their cluster centroids, as a consumer that reads neither weight
+# nor fit sees the paper's output), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
+# FLOOR (0: no reconstruction from the input itself), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
 # point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
 # two above; docs/results.md is then left alone).
 set -euo pipefail
@@ -50,7 +53,7 @@ else
   samples="${SAMPLES:-1000000}"
 fi
 read -r -a ours_weights <<< "${OURS_WEIGHTS:-quality}"
-peers=(cgal-hierarchy cgal-grid meshlab-poisson)
+read -r -a peers <<< "${PEERS-cgal-hierarchy cgal-grid meshlab-poisson}"
 work="${WORK:-${TMPDIR:-/tmp}/gsbench-downstream}"
 mkdir -p "$out/raw" "$work"
 csv="$out/downstream.csv"
@@ -118,18 +121,21 @@ for name in "${present[@]}"; do
         nice "$gsresample" "$input" "$work/$name/ours.surfel" --level 8 > /dev/null
         /usr/bin/python3 "$root/bench/surfel_area_quality.py" "$work/$name/ours.surfel" "$work/$name/ours_area.ply"
         reconstruct_and_measure "$name" ours-area "$work/$name/ours_area.ply" area "n=8" yes ;;
+      nofit)
+        nice "$gsresample" "$input" "$work/$name/ours_nofit.ply" --level 8 --fit-offsets 0 > /dev/null
+        reconstruct_and_measure "$name" ours-nofit "$work/$name/ours_nofit.ply" none "n=8" yes ;;
       *) echo "[downstream] unknown weight $weight in OURS_WEIGHTS" >&2; exit 2 ;;
     esac
   done
 
   rm -f "$work/$name/export.csv"
-  nice "$gsbench" export "$input" --count "$count" --out "$work/$name/peer" --methods "$(IFS=,; echo "${peers[*]}")" \
+  [ ${#peers[@]} -gt 0 ] && nice "$gsbench" export "$input" --count "$count" --out "$work/$name/peer" --methods "$(IFS=,; echo "${peers[*]}")" \
     --meshlabserver "$meshlabserver" --work "$work/$name" --csv "$work/$name/export.csv"
   for peer in "${peers[@]}"; do
     IFS=, read -r _ _ _ parameters matched _ < <(grep "^$peer," "$work/$name/export.csv")
     reconstruct_and_measure "$name" "$peer" "$work/$name/peer_$peer.ply" none "$parameters" "$matched"
   done
-  reconstruct_and_measure "$name" floor "$input" none "S'=S" yes
+  [ "${FLOOR:-1}" = 0 ] || reconstruct_and_measure "$name" floor "$input" none "S'=S" yes
 done
 
 echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((SECONDS - started)) s." >> "$header"
