@@ -63,12 +63,15 @@ target() { # the dragon (437,645 points) in 13 tiles of at most 150,000 points w
 
 big() {
   local count=${PARTS:-10} parts=() input
-  for seed in $(seq "$count"); do parts+=("$(generate 20000000 "$seed")"); done
-  input=${parts[0]}
   if [ "$count" -gt 1 ]; then
     input=dragon_$((count * 20))M.ply
-    [ -f "$input" ] || nice /usr/bin/python3 "$here/bench/tile/concat_ply.py" "$input" "${parts[@]}"
-    rm -f "${parts[@]}"
+    if [ ! -f "$input" ]; then
+      for seed in $(seq "$count"); do parts+=("$(generate 20000000 "$seed")"); done
+      nice /usr/bin/python3 "$here/bench/tile/concat_ply.py" "$input" "${parts[@]}"
+      rm -f "${parts[@]}"
+    fi
+  else
+    input=$(generate 20000000 1)
   fi
   measure split_big "$gstile" split "$input" tiles_big --tile-points "${TILE_POINTS:-8000000}"
   grep "tiles with points" split_big.log
