@@ -15,9 +15,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report import md_table, models_in_order, num, read_rows  # noqa: E402
 
 METHOD_LABEL = {
-    "ours": "ours (confidence = points represented)",
+    "ours": "ours, as resample_and_reconstruct.mlx reconstructs",
     "ours-none": "ours, unweighted",
+    "ours-quality": "ours (confidence = points represented)",
     "ours-area": "ours (confidence = ellipse area)",
+    "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",
     "meshlab-poisson": "MeshLab Poisson disk",
@@ -25,7 +27,8 @@ METHOD_LABEL = {
 }
 METHOD_ORDER = list(METHOD_LABEL)
 PEERS = ["cgal-hierarchy", "cgal-grid", "meshlab-poisson"]
-SHORT = {"ours": "ours", "ours-none": "ours unweighted", "ours-area": "ours area", "cgal-hierarchy": "hierarchy",
+SHORT = {"ours": "ours", "ours-none": "ours unweighted", "ours-quality": "ours by points", "ours-area": "ours area",
+         "ours-nofit": "ours no fit", "cgal-hierarchy": "hierarchy",
          "cgal-grid": "grid", "meshlab-poisson": "Poisson disk", "floor": "floor"}
 STATS = [("rms", "RMS"), ("p99", "p99"), ("max", "max")]
 DIRECTIONS = [("symmetric", "both ways"), ("to_original", "reconstruction → original"),
@@ -181,11 +184,17 @@ def plot(rows, path):
     plt.close(fig)
 
 
+WEIGHTING = {"none": "unweighted", "quality": "with confidence = the points each surfel represents",
+             "area": "with confidence = each ellipse's area"}
+
+
 def intro(rows):
+    ours = next((r for r in rows if r["method"] == "ours"), None)
+    weighting = WEIGHTING.get(ours["weight"], ours["weight"]) if ours else "as shipped"
     return ("Each model is resampled by ours (`gsresample`, level 8) and by every peer matched to our count "
             "(±2 %); MeshLab's *Screened Poisson* (2020.09, meshlabserver) reconstructs a surface from each "
-            f"point set ({depth_note(rows)}; the other parameters at MeshLab's defaults), ours with "
-            "confidence = the points each surfel represents, the peers' points and the floor (the whole input) "
+            f"point set ({depth_note(rows)}; the other parameters at MeshLab's defaults), ours {weighting} as "
+            "`sample_data/resample_and_reconstruct.mlx` does, the peers' points and the floor (the whole input) "
             "unweighted. Each reconstruction is measured against the original mesh with uniform area samples "
             "of each surface and the exact distance to the nearest triangle of the other (`gsmeshdist`): "
             "RMS, 99th percentile and maximum, in 10⁻³ of the original's bounding-box diagonal; *both ways* "

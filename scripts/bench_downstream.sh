@@ -15,15 +15,15 @@
 # each surfel represents); `gsbench export` matches CGAL's hierarchy, CGAL's grid and MeshLab's
 # Poisson disk to our count (+-2 %) and writes their points; the input itself is the floor.
 # Each is reconstructed by meshlabserver's "Surface Reconstruction: Screened Poisson" at one depth
-# for all (9 for the dragon, 8 for the others), ours with confidence = quality, the others
-# unweighted; `gsmeshdist` measures each reconstruction against NAME_mesh.ply (bench/README.md).
+# for all (9 for the dragon, 8 for the others), ours weighted as the shipped
+# sample_data/resample_and_reconstruct.mlx says (its confidence flag), the others unweighted;
+# `gsmeshdist` measures each reconstruction against NAME_mesh.ply (bench/README.md).
 #
 # Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), SAMPLES (area samples
-# per mesh for the distance, default 1,000,000), OURS_WEIGHTS (the weightings of ours to
-# reconstruct, space-separated among quality, none, area, nofit; default quality: rows ours-none,
-# ours-area and ours-nofit are added for the others; nofit is ours with --fit-offsets 0,
-# unweighted: the surfels at their cluster centroids, as a consumer that reads neither weight
-# nor fit sees the paper's output), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
+# per mesh for the distance, default 1,000,000), OURS_WEIGHTS (more weightings of ours to
+# reconstruct, each a row ours-WEIGHT, space-separated among quality, none, area, nofit; default
+# quality; nofit is ours with --fit-offsets 0, unweighted: the surfels at their cluster centroids,
+# what a consumer that reads neither weight nor fit gets from the paper's placement), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
 # FLOOR (0: no reconstruction from the input itself), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
 # point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
 # two above; docs/results.md is then left alone).
@@ -52,7 +52,10 @@ else
   out="${OUT:-$root/bench/results}"
   samples="${SAMPLES:-1000000}"
 fi
-read -r -a ours_weights <<< "${OURS_WEIGHTS:-quality}"
+read -r -a ours_weights <<< "${OURS_WEIGHTS-quality}"
+# The weighting users get: the confidence flag of the shipped script.
+shipped_weight=none
+grep -q 'value="true" name="confidence"' "$root/sample_data/resample_and_reconstruct.mlx" && shipped_weight=quality
 read -r -a peers <<< "${PEERS-cgal-hierarchy cgal-grid meshlab-poisson}"
 work="${WORK:-${TMPDIR:-/tmp}/gsbench-downstream}"
 mkdir -p "$out/raw" "$work"
@@ -101,7 +104,7 @@ reconstruct_and_measure() {
 
 echo "model,input_points,method,points,weight,depth,parameters,matched,reconstruction_s,distance_s,$("$gsmeshdist" --csv-header)" > "$csv"
 bench_header ", one reconstruction per method: times are indicative" > "$header"
-echo "Distance samples per mesh: $samples; weightings of ours: ${ours_weights[*]}." >> "$header"
+echo "Distance samples per mesh: $samples; ours weighted as shipped ($shipped_weight); more weightings of ours: ${ours_weights[*]:-none}." >> "$header"
 
 started=$SECONDS
 for name in "${present[@]}"; do
@@ -113,10 +116,11 @@ for name in "${present[@]}"; do
 
   nice "$gsresample" "$input" "$work/$name/ours.ply" --level 8 > "$work/$name/ours.log"
   count="$(ply_vertex_count "$work/$name/ours.ply")"
+  reconstruct_and_measure "$name" ours "$work/$name/ours.ply" "$shipped_weight" "n=8" yes
   for weight in "${ours_weights[@]}"; do
+    [ "$weight" != "$shipped_weight" ] || continue
     case "$weight" in
-      quality) reconstruct_and_measure "$name" ours "$work/$name/ours.ply" quality "n=8" yes ;;
-      none) reconstruct_and_measure "$name" ours-none "$work/$name/ours.ply" none "n=8" yes ;;
+      quality|none) reconstruct_and_measure "$name" "ours-$weight" "$work/$name/ours.ply" "$weight" "n=8" yes ;;
       area)
         nice "$gsresample" "$input" "$work/$name/ours.surfel" --level 8 > /dev/null
         /usr/bin/python3 "$root/bench/surfel_area_quality.py" "$work/$name/ours.surfel" "$work/$name/ours_area.ply"

@@ -1,6 +1,5 @@
 # The shipped resample-then-reconstruct script on the bunny: the resampling, then MeshLab's
-# Screened Poisson on the surfels with their quality (points represented) as confidence. The
-# result is a surface of thousands of triangles within the bunny's box grown by a tenth of its
+# Screened Poisson on the surfels. The result is a surface of thousands of triangles within the bunny's box grown by a tenth of its
 # size (a reconstruction that ignored the samples would fill Screened Poisson's cube, 1.1 times
 # larger).
 source "$E2E_COMMON"
