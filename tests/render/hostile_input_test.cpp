@@ -11,6 +11,8 @@
 #include <QProcess>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 
@@ -131,15 +133,19 @@ TEST(HostileInput, TheUsableSplatsAreDrawnAsWithoutTheOthers)
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
-// A binary PLY of oriented points (no radii, no axes: splat_render estimates the sizes).
-std::string writePly(const std::string &name, const std::vector<HostilePoint> &points)
+// A binary PLY of oriented points (no radii, no axes: splat_render estimates the sizes), then the
+// header lines `elements` declares and their records' bytes `records`.
+std::string writePly(const std::string &name, const std::vector<HostilePoint> &points,
+                     const std::string &elements = "", const std::string &records = "")
 {
     const std::string path = testing::TempDir() + name;
     std::ofstream out(path, std::ios::binary);
     out << "ply\nformat binary_little_endian 1.0\nelement vertex " << points.size()
         << "\nproperty float x\nproperty float y\nproperty float z\n"
-           "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
+           "property float nx\nproperty float ny\nproperty float nz\n"
+        << elements << "end_header\n";
     out.write(reinterpret_cast<const char *>(points.data()), std::streamsize(points.size() * sizeof(HostilePoint)));
+    out << records;
     return path;
 }
 
@@ -198,6 +204,27 @@ TEST(HostileInput, SplatRenderRefusesFilesWithNothingToDraw)
     const ToolRun hostile = runSplatRender(writePly("all_hostile.ply", kHostile));
     EXPECT_EQ(hostile.exitCode, 2);
     EXPECT_TRUE(hostile.errors.contains("holds no drawable points")) << hostile.errors.toStdString();
+}
+
+TEST(HostileInput, SplatRenderRefusesListsPlylibWouldWritePast)
+{
+    const std::vector<HostilePoint> points(3, HostilePoint{{0, 0, 0}, {0, 0, 1}});
+    // plylib skips an unread binary list through 512 bytes: 185 ints would write 740.
+    const ToolRun skipped = runSplatRender(writePly("skipped_list.ply", points, "element extra 1\nproperty list uchar int data\n",
+                                                    std::string(1, char(185)) + std::string(740, 'A')));
+    EXPECT_NE(skipped.exitCode, 0);
+    EXPECT_TRUE(skipped.errors.contains("list property 'data' of element 'extra' is not supported"))
+        << skipped.errors.toStdString();
+    // A face of 600 corners counted by an int would write past the reader's 512.
+    std::string face(4, '\0');
+    const std::int32_t corners = 600;
+    std::memcpy(&face[0], &corners, 4);
+    face += std::string(4 * 600, '\0');
+    const ToolRun polygon = runSplatRender(
+        writePly("long_face.ply", points, "element face 1\nproperty list int int vertex_indices\n", face));
+    EXPECT_NE(polygon.exitCode, 0);
+    EXPECT_TRUE(polygon.errors.contains("list property 'vertex_indices' of element 'face' is not supported"))
+        << polygon.errors.toStdString();
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "point_set_file.h"
 
+#include <io_surfel/printable_text.h>
 #include <wrap/ply/plylib.h>
 
 #include <algorithm>
@@ -26,6 +27,40 @@ struct FaceRecord
     int count;
     int indices[kMaxPolygonVertices];
 };
+
+int typeBytes(int plyType)
+{
+    switch (plyType) {
+    case vcg::ply::T_CHAR: case vcg::ply::T_UCHAR: return 1;
+    case vcg::ply::T_SHORT: case vcg::ply::T_USHORT: return 2;
+    case vcg::ply::T_INT: case vcg::ply::T_UINT: case vcg::ply::T_FLOAT: return 4;
+    case vcg::ply::T_DOUBLE: return 8;
+    default: return 0;
+    }
+}
+
+// plylib reads a list into the memory it is given, as many items as the file's count says, and
+// skips an unread binary list through a 512-byte buffer, its count read as one byte whatever its
+// type. Lists pass only where that cannot write past the memory: a face's corners counted by one
+// byte (at most 255 of the FaceRecord's 512), and other binary lists of one-byte counts and items
+// of at most two bytes (ASCII lists are skipped item by item).
+void checkLists(const vcg::ply::PlyFile &file, const std::string &path)
+{
+    const bool binary = std::string(file.GetHeader()).find("format binary") != std::string::npos;
+    for (const vcg::ply::PlyElement &element : file.elements) {
+        for (const vcg::ply::PlyProperty &p : element.props) {
+            if (!p.islist) continue;
+            const bool corners = element.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index");
+            const bool oneByteCount = typeBytes(p.tipoindex) == 1;
+            if (corners ? oneByteCount : !binary || (oneByteCount && typeBytes(p.tipo) <= 2)) continue;
+            throw std::runtime_error(path + ": list property '" + surfel_io::printableText(p.name, 40) +
+                                     "' of element '" + surfel_io::printableText(element.name, 40) +
+                                     "' is not supported (" + (corners ? "corner counts of one byte are" :
+                                     "binary lists of one-byte counts and items of at most two bytes are") +
+                                     ")");
+        }
+    }
+}
 
 vcg::ply::PlyElement *findElement(vcg::ply::PlyFile &file, const char *name)
 {
@@ -146,6 +181,7 @@ PointSetFile readPointSetFile(const std::string &path)
     vcg::ply::PlyFile file;
     if (file.Open(path.c_str(), vcg::ply::PlyFile::MODE_READ) != 0)
         throw std::runtime_error("cannot read " + path + " as PLY (plylib error " + std::to_string(file.GetError()) + ")");
+    checkLists(file, path);
     vcg::ply::PlyElement *vertexElement = findElement(file, "vertex");
     if (vertexElement == nullptr)
         throw std::runtime_error(path + " has no vertex element");
