@@ -292,6 +292,81 @@ def scale_table():
                      "B/point beyond the input"], lines) if lines else None
 
 
+def tile_results(stage):
+    """bench/tile/results/STAGE.txt (bench/tile/bench_tile.sh): its stamp lines and its figures as
+    {(name, key): value}, or None when absent."""
+    p = path("bench", "tile", "results", f"{stage}.txt")
+    if not os.path.exists(p):
+        return None
+    stamp, figures = {}, {}
+    for line in read(p).splitlines():
+        if line.startswith("# load average at "):
+            stamp[line.split()[4]] = line[2:]
+        elif line.startswith("# "):
+            key, _, value = line[2:].partition(" ")
+            stamp[key] = value
+        elif line.startswith("outputs_1_and_2_workers="):
+            figures[("outputs", "identical")] = line.split("=", 1)[1] == "identical"
+        else:
+            words = line.split()
+            for word in words[1:]:
+                if "=" in word:
+                    key, value = word.split("=", 1)
+                    figures[(words[0], key)] = value
+    return stamp, figures
+
+
+def tile_stamp(stage, stamp):
+    loads = "; ".join(v for k, v in stamp.items() if k in ("start", "end"))
+    return (f"*Data: `bench/tile/bench_tile.sh WORK {stage}` at commit {stamp.get('commit', '?')}, on "
+            f"{stamp.get('machine', '?')}, {stamp.get('date', '?')}; {loads}; `bench/tile/results/{stage}.txt`.*")
+
+
+def tiling():
+    parts = []
+    big = tile_results("big")
+    if big:
+        stamp, f = big
+        one, two = float(f[("dask_1_workers", "wall_s")]), float(f[("dask_2_workers", "wall_s")])
+        points = 200e6
+        parts += ["### 200 million points from disk, on Dask", tile_stamp("big", stamp),
+                  "The dragon densified by `gsscale` to ten samplings of 20 million points (seeds 1-10), "
+                  "concatenated into one 4.8 GB binary PLY, split into tiles of at most 8 million points with "
+                  "their halo and resampled through `scripts/gstile_dask.py` on a local cluster, each tile's run "
+                  "in its own process under a 4 GiB address-space cap (`ulimit -v`).",
+                  md_table(["step", "wall s", "points/s", "peak MiB"],
+                           [["split", f[("split_big", "wall_s")], f"{points / float(f[('split_big', 'wall_s')]):,.0f}",
+                             f[("split_big", "peak_mib")]],
+                            ["tiles on 1 worker", f"{one:.1f}", f"{points / one:,.0f}",
+                             f[("dask_1_workers", "largest_tile_peak_mib")] + " (largest tile)"],
+                            ["tiles on 2 workers", f"{two:.1f}", f"{points / two:,.0f}",
+                             f[("dask_2_workers", "largest_tile_peak_mib")] + " (largest tile)"]]),
+                  f"Speed-up from one worker to two: {one / two:.2f}. The outputs of one and two workers are "
+                  + ("identical." if f.get(("outputs", "identical")) else "NOT identical.")]
+    target = tile_results("target")
+    if target:
+        stamp, f = target
+        rows = []
+        for count in ("10000", "40000", "100000"):
+            name = f"target_{count}"
+            if (name, "count_diff_pct") not in f:
+                continue
+            rows.append([f"{int(count):,}", f"{int(f[(name, 'count_tiled')]):,}"] +
+                        [f"{float(f[(name, k)]):+.2f} %" for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
+                                                                  "delta_p999_diff_pct", "l21_own_rms_diff_pct",
+                                                                  "l21_blended_rms_diff_pct")])
+        parts += ["### A target count shared over the tiles", tile_stamp("target", stamp),
+                  "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, "
+                  "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole:",
+                  md_table(["target", "surfels tiled", "count", "Δ* RMS", "Δ* max", "Δ* p99.9", "L2,1 own",
+                            "L2,1 blended"], rows)]
+    if parts:
+        parts = ["## Tiled resampling",
+                 "`gstile` resamples a scan of any size tile by tile ([docs/tiling.md](tiling.md)); the whole "
+                 "run against the tiled one at 5 and 20 million points: [bench/tile/README.md](../bench/tile/README.md)."] + parts
+    return parts
+
+
 # ------------------------------------------------------------------------------------------------
 # The page
 
@@ -380,6 +455,8 @@ def results_doc():
                       "mesh's silhouette, pixels drawn outside it, PSNR against the mesh image, time per frame "
                       f"(Mesa llvmpipe, a software renderer). Per view and definitions: [results.md]({rel(render_md)}).",
                       summary]
+
+    parts += tiling()
 
     scale_md = path("bench", "scale", "results.md")
     if os.path.exists(scale_md):

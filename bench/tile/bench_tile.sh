@@ -8,7 +8,8 @@
 # (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
 # (MEMORY_CAP_KIB, default 4 GiB) and records its peak RSS. Writes key=value lines into
 # WORK_DIR/*.txt and prints them. Needs a Release build in build/ (gsresample, gstile,
-# gstile_compare, gsscale) and about 20 GB of disk for `big`.
+# gstile_compare, gsscale) and about 20 GB of disk for `big`. The lines, after a stamp (commit, date,
+# machine, load), also go to bench/tile/results/STAGE.txt, which bench/results_doc.py reads.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(mkdir -p "$1" && cd "$1" && pwd)
@@ -86,9 +87,21 @@ big() {
   tail -1 dask_2_workers.log
 }
 
+stamp() {
+  local dirty
+  dirty=$(git -C "$here" status --porcelain --untracked-files=no | awk '{print $2}' | paste -sd' ' -)
+  echo "# commit $(git -C "$here" rev-parse --short HEAD)${dirty:+ (uncommitted changes in: $dirty)}"
+  echo "# date $(date -u +%Y-%m-%d)"
+  echo "# machine $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -1 | awk '{print $1, $2}'), $(nproc) cores"
+  echo "# load average at start $(cut -d' ' -f1-3 /proc/loadavg)"
+}
+
 case $stage in
-  compare) { compare 5000000 1000000; compare 20000000 4000000; } | tee compare.txt ;;
-  big) big | tee big.txt ;;
-  target) target | tee target.txt ;;
+  compare) run() { compare 5000000 1000000; compare 20000000 4000000; } ;;
+  big) run() { big; } ;;
+  target) run() { target; } ;;
   *) echo "usage: $0 WORK_DIR compare|big|target" >&2; exit 2 ;;
 esac
+mkdir -p "$here/bench/tile/results"
+{ stamp; run; echo "# load average at end $(cut -d' ' -f1-3 /proc/loadavg)"; } | tee "$stage.txt"
+cp "$stage.txt" "$here/bench/tile/results/$stage.txt"
