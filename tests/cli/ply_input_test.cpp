@@ -150,6 +150,44 @@ TEST_F(PlyInput, ListsVcglibSkipsThroughAFixedBufferAreRefusedInBinaryFiles)
                   "list property 'tags' of element 'face' ('uint' counts, 'uchar' items)");
 }
 
+TEST_F(PlyInput, CornerListsVcglibDoesNotReadAreCheckedAsSkippedOnes)
+{
+    const std::string vertices(3 * 24, '\0');
+    // vcglib reads no float corners: it skips them through its 512 bytes (255 floats: 1020).
+    ExpectRefused(Header("binary_little_endian", "3", "element face 1\nproperty list uchar float vertex_indices\n") +
+                      vertices + std::string(1, char(255)) + std::string(1020, '\0'),
+                  "list property 'vertex_indices' of element 'face' ('uchar' counts, 'float' items)");
+    // Of two corner lists vcglib reads one and skips the other.
+    ExpectRefused(Header("binary_little_endian", "3",
+                         "element face 0\nproperty list uchar int vertex_indices\nproperty list uchar int vertex_index\n") +
+                      vertices,
+                  "declares both 'vertex_indices' and 'vertex_index'");
+}
+
+TEST_F(PlyInput, AsciiFacesOfMoreCornersThanVcglibHoldsAreRefused)
+{
+    // In ASCII vcglib reads a list's count as an int, whatever its declared type.
+    std::string face = "600";
+    for (int i = 0; i < 600; ++i) face += " 0";
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + face + "\n",
+                  "face record 0 has '600' corners; at most 255 are supported");
+    ExpectRead(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n", 3);
+}
+
+TEST_F(PlyInput, TextureCommentsLongerThanVcglibHoldsAreRefused)
+{
+    const std::string vertices(3 * 24, '\0');
+    ExpectRefused("ply\nformat binary_little_endian 1.0\ncomment TextureFile " + std::string(300, 'a') +
+                      ".png\nelement vertex 3\n" + kPointProperties + "end_header\n" + vertices,
+                  "TextureFile comment of 316 characters");
+    ExpectRefused("ply\nformat binary_little_endian 1.0\nobj_info TextureFile " + std::string(300, 'a') +
+                      "\nelement vertex 3\n" + kPointProperties + "end_header\n" + vertices,
+                  "TextureFile comment");
+    ExpectRead("ply\nformat ascii 1.0\ncomment TextureFile bunny.png\nelement vertex 3\n" + std::string(kPointProperties) +
+                   "end_header\n" + AsciiRows(3),
+               3);
+}
+
 TEST_F(PlyInput, ListsVcglibSkipsSafelyAreRead)
 {
     // One-byte counts of items of at most two bytes fit the buffer; ASCII lists are skipped item by item.

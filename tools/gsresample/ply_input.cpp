@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -25,6 +26,28 @@ constexpr std::size_t kMaxHeaderLineBytes = 500;
 constexpr std::size_t kMaxErrorChars = 200;
 // Quoted header text in messages: 32 characters of it and the "..." of a cut.
 constexpr std::size_t kQuoteChars = 35;
+// vcglib copies a TextureFile comment, each `<this>` in it replaced by the file's name, into 255
+// bytes; comments that could come near that are refused.
+constexpr std::size_t kMaxTextureCommentBytes = 200;
+// A face's corners, counted by one byte: ImporterPLY holds 512.
+constexpr long kMaxFaceCorners = 255;
+
+struct ScalarType
+{
+    const char *name, *alias;
+    int bytes;
+};
+constexpr ScalarType kScalarTypes[] = {{"char", "int8", 1},   {"uchar", "uint8", 1},     {"short", "int16", 2},
+                                       {"ushort", "uint16", 2}, {"int", "int32", 4},       {"uint", "uint32", 4},
+                                       {"float", "float32", 4}, {"double", "float64", 8}};
+
+/// The first spelling of a PLY scalar type ("int32" -> "int"), empty for an unknown name.
+std::string CanonicalType(const std::string &type)
+{
+    for (const ScalarType &t : kScalarTypes)
+        if (type == t.name || type == t.alias) return t.name;
+    return std::string();
+}
 
 std::string Quote(const std::string &text) { return "'" + surfel_io::printableText(text, kQuoteChars) + "'"; }
 
@@ -236,7 +259,12 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
             error = where + "empty";
             return false;
         }
-        if (tokens[0] == "comment") continue;
+        // vcglib keeps the text after `comment` and `obj_info` (and one separator) as a comment.
+        if (tokens[0] == "comment" || tokens[0] == "obj_info") {
+            const std::size_t keyword = line.find(tokens[0]) + tokens[0].size() + 1;
+            header.comments.push_back(keyword < line.size() ? line.substr(keyword) : std::string());
+            if (tokens[0] == "comment") continue;
+        }
         bool parsed;
         if (!formatSeen) {
             parsed = formatSeen = ParseFormat(tokens, line, header, error);
@@ -253,10 +281,15 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
     }
 }
 
-/// Whether ImporterPLY reads list `property` of `element` (the face corners) rather than skipping it.
-bool IsCornerList(const HeaderElement &element, const HeaderProperty &property)
+/// Whether ImporterPLY reads list `property` of `element` into its 512 face corners: the corner
+/// lists its descriptors name (vertex_indices of int, uint or short items, vertex_index of int
+/// items; their counts are checked to be one byte apart). Every other list it skips.
+bool IsReadCornerList(const HeaderElement &element, const HeaderProperty &property)
 {
-    return element.name == "face" && (property.name == "vertex_indices" || property.name == "vertex_index");
+    if (element.name != "face" || !property.isList) return false;
+    const std::string item = CanonicalType(property.type);
+    if (property.name == "vertex_indices") return item == "int" || item == "uint" || item == "short";
+    return property.name == "vertex_index" && item == "int";
 }
 
 /// A list ImporterPLY skips in a binary file goes through a 512-byte buffer, its count read as one
@@ -264,7 +297,7 @@ bool IsCornerList(const HeaderElement &element, const HeaderProperty &property)
 bool CheckSkippedList(const PlyHeader &header, const HeaderElement &element, const HeaderProperty &property,
                       std::string &error)
 {
-    if (!header.binary || IsCornerList(element, property) ||
+    if (!header.binary || IsReadCornerList(element, property) ||
         (TypeSize(property.countType) == 1 && TypeSize(property.type) <= 2))
         return true;
     error = "list property " + Quote(property.name) + " of element " + Quote(element.name) + " (" +
@@ -293,6 +326,10 @@ bool CheckElements(const PlyHeader &header, std::string &error)
         for (const HeaderProperty &p : e.properties)
             if (p.isList && e.name != "vertex" && !CheckSkippedList(header, e, p, error)) return false;
         if (e.name != "face") continue;
+        if (e.Find("vertex_indices") && e.Find("vertex_index")) {
+            error = "the face element declares both 'vertex_indices' and 'vertex_index'";
+            return false;
+        }
         for (const HeaderProperty &p : e.properties) {
             if (!p.isList) continue;
             if (p.name == "vertex_indices" || p.name == "vertex_index") {
@@ -347,7 +384,7 @@ bool CheckElements(const PlyHeader &header, std::string &error)
 /// each record and makes a triangle of it).
 int MinimumValues(const HeaderElement &element, const HeaderProperty &property)
 {
-    return property.isList && IsCornerList(element, property) ? 4 : 1;
+    return IsReadCornerList(element, property) ? 4 : 1;
 }
 
 /// The body must hold at least the smallest records the counts announce: a binary record
@@ -381,18 +418,65 @@ bool CheckBodySize(const PlyHeader &header, std::uint64_t fileSize, std::string 
     return true;
 }
 
+/// See kMaxTextureCommentBytes.
+bool CheckTextureComments(const PlyHeader &header, const std::string &path, std::string &error)
+{
+    const std::string fileName = path.substr(path.find_last_of('/') + 1);
+    for (const std::string &comment : header.comments) {
+        if (comment.compare(0, 11, "TextureFile") != 0) continue;
+        const std::size_t expansions = std::size_t(std::count(comment.begin(), comment.end(), '<'));
+        if (comment.size() + expansions * fileName.size() >= kMaxTextureCommentBytes) {
+            error = "a TextureFile comment of " + std::to_string(comment.size()) +
+                    " characters (its <this> the file's name) is longer than vcglib's PLY reader holds";
+            return false;
+        }
+    }
+    return true;
+}
+
+/// In an ASCII file vcglib reads a list's count as an int whatever its declared type: a face of
+/// more corners than kMaxFaceCorners is refused here, before it reads them. Scans the records up
+/// to the last element with corners; a body vcglib cannot parse is left to vcglib's own error.
+bool CheckAsciiCornerCounts(const std::string &path, const PlyHeader &header, std::string &error)
+{
+    std::size_t last = header.elements.size();
+    for (std::size_t e = 0; e < header.elements.size(); ++e)
+        for (const HeaderProperty &p : header.elements[e].properties)
+            if (IsReadCornerList(header.elements[e], p)) last = e;
+    if (header.binary || last == header.elements.size()) return true;
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(std::streamoff(header.bodyOffset));
+    std::string token;
+    for (std::size_t e = 0; e <= last; ++e) {
+        const HeaderElement &element = header.elements[e];
+        for (std::uint64_t r = 0; r < element.count; ++r) {
+            for (const HeaderProperty &p : element.properties) {
+                if (!(in >> token)) return true;
+                if (!p.isList) continue;
+                char *end = nullptr;
+                const long count = std::strtol(token.c_str(), &end, 10);
+                if (end == token.c_str() || *end != '\0') return true;
+                if (IsReadCornerList(element, p) && (count < 0 || count > kMaxFaceCorners)) {
+                    error = "face record " + std::to_string(r) + " has " + Quote(token) + " corners; at most " +
+                            std::to_string(kMaxFaceCorners) + " are supported";
+                    return false;
+                }
+                for (long i = 0; i < count; ++i)
+                    if (!(in >> token)) return true;
+            }
+        }
+    }
+    return true;
+}
+
 std::string Bounded(const std::string &message) { return surfel_io::printableText(message, kMaxErrorChars); }
 
 } // namespace
 
 int TypeSize(const std::string &type)
 {
-    static const char *const names[][2] = {{"char", "int8"},   {"uchar", "uint8"},   {"short", "int16"},
-                                           {"ushort", "uint16"}, {"int", "int32"},     {"uint", "uint32"},
-                                           {"float", "float32"}, {"double", "float64"}};
-    static const int sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
-    for (int i = 0; i < 8; ++i)
-        if (type == names[i][0] || type == names[i][1]) return sizes[i];
+    for (const ScalarType &t : kScalarTypes)
+        if (type == t.name || type == t.alias) return t.bytes;
     return 0;
 }
 
@@ -419,7 +503,8 @@ bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::st
     }
     const std::uint64_t fileSize = std::uint64_t(info.st_size);
     if (!ReadHeader(in, fileSize, header, error) || !CheckElements(header, error) ||
-        !CheckBodySize(header, fileSize, error)) {
+        !CheckBodySize(header, fileSize, error) || !CheckTextureComments(header, path, error) ||
+        !CheckAsciiCornerCounts(path, header, error)) {
         error = Bounded(error);
         return false;
     }

@@ -40,6 +40,7 @@ struct PlyHeader
     bool binary = false;
     bool bigEndian = false; // binary files only
     std::vector<HeaderElement> elements;
+    std::vector<std::string> comments; ///< the text after `comment` and `obj_info`, as vcglib keeps it
     std::uint64_t bodyOffset = 0;
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <sstream>
 #include <stdexcept>
 
 namespace splat {
@@ -39,25 +40,33 @@ int typeBytes(int plyType)
     }
 }
 
-// plylib reads a list into the memory it is given, as many items as the file's count says, and
-// skips an unread binary list through a 512-byte buffer, its count read as one byte whatever its
-// type. Lists pass only where that cannot write past the memory: a face's corners counted by one
-// byte (at most 255 of the FaceRecord's 512), and other binary lists of one-byte counts and items
-// of at most two bytes (ASCII lists are skipped item by item).
-void checkLists(const vcg::ply::PlyFile &file, const std::string &path)
+bool isFloating(int plyType) { return plyType == vcg::ply::T_FLOAT || plyType == vcg::ply::T_DOUBLE; }
+
+// Whether the header's format line names a binary encoding (its tokens, as plylib reads them).
+bool isBinary(const vcg::ply::PlyFile &file)
 {
-    const bool binary = std::string(file.GetHeader()).find("format binary") != std::string::npos;
+    std::istringstream header(file.GetHeader());
+    std::string line, keyword, format;
+    while (std::getline(header, line)) {
+        std::istringstream tokens(line);
+        if (tokens >> keyword >> format && keyword == "format") return format.compare(0, 6, "binary") == 0;
+    }
+    return false;
+}
+
+// plylib skips a list it does not read, in a binary file, through a 512-byte buffer, its count
+// read as one byte whatever its type: other binary lists pass only with one-byte counts and items
+// of at most two bytes (ASCII lists are skipped item by item). `corners` is the one list read.
+void checkSkippedLists(const vcg::ply::PlyFile &file, const vcg::ply::PlyProperty *corners, const std::string &path)
+{
+    if (!isBinary(file)) return;
     for (const vcg::ply::PlyElement &element : file.elements) {
         for (const vcg::ply::PlyProperty &p : element.props) {
-            if (!p.islist) continue;
-            const bool corners = element.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index");
-            const bool oneByteCount = typeBytes(p.tipoindex) == 1;
-            if (corners ? oneByteCount : !binary || (oneByteCount && typeBytes(p.tipo) <= 2)) continue;
+            if (!p.islist || &p == corners || (typeBytes(p.tipoindex) == 1 && typeBytes(p.tipo) <= 2)) continue;
             throw std::runtime_error(path + ": list property '" + surfel_io::printableText(p.name, 40) +
                                      "' of element '" + surfel_io::printableText(element.name, 40) +
-                                     "' is not supported (" + (corners ? "corner counts of one byte are" :
-                                     "binary lists of one-byte counts and items of at most two bytes are") +
-                                     ")");
+                                     "' is not supported (binary lists need one-byte counts and items of at "
+                                     "most two bytes)");
         }
     }
 }
@@ -76,7 +85,8 @@ bool readScalar(vcg::ply::PlyFile &file, vcg::ply::PlyElement &element, const ch
                 std::size_t offset)
 {
     vcg::ply::PlyProperty *found = element.FindProp(property);
-    if (found == nullptr || found->islist)
+    // plylib converts binary floating-point values only into floating-point memory.
+    if (found == nullptr || found->islist || (isFloating(found->tipo) && !isFloating(memoryType)))
         return false;
     return file.AddToRead(element.name.c_str(), property, found->tipo, memoryType, offset, 0, 0, 0, 0, 0) ==
            vcg::ply::E_NOERROR;
@@ -124,16 +134,21 @@ VertexProperties requestVertexProperties(vcg::ply::PlyFile &file, vcg::ply::PlyE
     return has;
 }
 
-// Asks plylib to store the face element's corner list as a FaceRecord; false when it has none.
-bool requestFaces(vcg::ply::PlyFile &file, vcg::ply::PlyElement &faceElement)
+// Asks plylib to store the face element's corner list as a FaceRecord, in binary files whose
+// corners are integers counted by one byte (at most 255 of the record's 512; in ASCII plylib reads
+// any count, so ASCII faces are not read); the list stored, or null.
+vcg::ply::PlyProperty *requestFaces(vcg::ply::PlyFile &file, vcg::ply::PlyElement &faceElement)
 {
+    if (!isBinary(file))
+        return nullptr;
     for (const char *name : {"vertex_indices", "vertex_index"}) {
         vcg::ply::PlyProperty *list = faceElement.FindProp(name);
-        if (list != nullptr && list->islist)
-            return file.AddToRead("face", name, list->tipo, vcg::ply::T_INT, offsetof(FaceRecord, indices), 1, 0,
-                                  list->tipoindex, vcg::ply::T_INT, offsetof(FaceRecord, count)) == vcg::ply::E_NOERROR;
+        if (list != nullptr && list->islist && typeBytes(list->tipoindex) == 1 && !isFloating(list->tipo) &&
+            file.AddToRead("face", name, list->tipo, vcg::ply::T_INT, offsetof(FaceRecord, indices), 1, 0,
+                           list->tipoindex, vcg::ply::T_INT, offsetof(FaceRecord, count)) == vcg::ply::E_NOERROR)
+            return list;
     }
-    return false;
+    return nullptr;
 }
 
 // Reads `count` vertex records of the current element into `result` (fit offsets apart).
@@ -181,13 +196,14 @@ PointSetFile readPointSetFile(const std::string &path)
     vcg::ply::PlyFile file;
     if (file.Open(path.c_str(), vcg::ply::PlyFile::MODE_READ) != 0)
         throw std::runtime_error("cannot read " + path + " as PLY (plylib error " + std::to_string(file.GetError()) + ")");
-    checkLists(file, path);
     vcg::ply::PlyElement *vertexElement = findElement(file, "vertex");
     if (vertexElement == nullptr)
         throw std::runtime_error(path + " has no vertex element");
     const VertexProperties has = requestVertexProperties(file, *vertexElement, path);
     vcg::ply::PlyElement *faceElement = findElement(file, "face");
-    const bool hasFaces = faceElement != nullptr && requestFaces(file, *faceElement);
+    vcg::ply::PlyProperty *corners = faceElement != nullptr ? requestFaces(file, *faceElement) : nullptr;
+    const bool hasFaces = corners != nullptr;
+    checkSkippedLists(file, corners, path);
 
     PointSetFile result;
     std::vector<float> fitOffsets;
