@@ -316,6 +316,11 @@ def tile_results(stage):
     return stamp, figures
 
 
+def signed_percent(value):
+    text = f"{value:+.2f}"
+    return ("0.00" if text in ("+0.00", "-0.00") else text) + " %"
+
+
 def tile_stamp(stage, stamp):
     loads = "; ".join(v for k, v in stamp.items() if k in ("start", "end"))
     return (f"*Data: `bench/tile/bench_tile.sh WORK {stage}` at commit {stamp.get('commit', '?')}, on "
@@ -328,12 +333,13 @@ def tiling():
     if big:
         stamp, f = big
         one, two = float(f[("dask_1_workers", "wall_s")]), float(f[("dask_2_workers", "wall_s")])
-        points = 200e6
-        parts += ["### 200 million points from disk, on Dask", tile_stamp("big", stamp),
-                  "The dragon densified by `gsscale` to ten samplings of 20 million points (seeds 1-10), "
-                  "concatenated into one 4.8 GB binary PLY, split into tiles of at most 8 million points with "
-                  "their halo and resampled through `scripts/gstile_dask.py` on a local cluster, each tile's run "
-                  "in its own process under a 4 GiB address-space cap (`ulimit -v`).",
+        points = int(f[("big_parameters", "points")])
+        parts += [f"### {points / 1e6:,.0f} million points from disk, on Dask", tile_stamp("big", stamp),
+                  f"The dragon densified by `gsscale` to {points // 20000000} samplings of 20 million points "
+                  f"({points * 24 / 1e9:.1f} GB of binary PLY), split into tiles of about "
+                  f"{int(f[('big_parameters', 'tile_points')]) / 1e6:g} million points and resampled through "
+                  "`scripts/gstile_dask.py` on a local cluster, each tile's run in its own process under a "
+                  f"{int(f[('big_parameters', 'cap_mib')]) / 1024:g} GiB address-space cap (`ulimit -v`).",
                   md_table(["step", "wall s", "points/s", "peak MiB"],
                            [["split", f[("split_big", "wall_s")], f"{points / float(f[('split_big', 'wall_s')]):,.0f}",
                              f[("split_big", "peak_mib")]],
@@ -352,7 +358,7 @@ def tiling():
             if (name, "count_diff_pct") not in f:
                 continue
             rows.append([f"{int(count):,}", f"{int(f[(name, 'count_tiled')]):,}"] +
-                        [f"{float(f[(name, k)]):+.2f} %" for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
+                        [signed_percent(float(f[(name, k)])) for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
                                                                   "delta_p999_diff_pct", "l21_own_rms_diff_pct",
                                                                   "l21_blended_rms_diff_pct")])
         parts += ["### A target count shared over the tiles", tile_stamp("target", stamp),

@@ -90,6 +90,9 @@ for stage in ${STAGES:-release sanitize fuzz hosts}; do
   summary+=("[test] $stage: $result in $((SECONDS - start)) s")
   echo "${summary[-1]}"
 done
+# A stage that failed early can leave background jobs of start_host_deps running: they stop with
+# the run (an interrupted MeshLab 2025.07 build resumes where it stopped next time).
+for job in $(jobs -pr); do pkill -TERM -P "$job" 2>/dev/null; kill "$job" 2>/dev/null; done
 echo "[test] summary:"
 printf '%s\n' "${summary[@]}"
 exit "$failed"

@@ -74,6 +74,7 @@ big() {
   else
     input=$(generate 20000000 1)
   fi
+  echo "big_parameters points=$((count * 20000000)) tile_points=${TILE_POINTS:-8000000} cap_mib=$((cap / 1024))"
   measure split_big "$gstile" split "$input" tiles_big --tile-points "${TILE_POINTS:-8000000}"
   grep "tiles with points" split_big.log
   capped_gstile

@@ -332,7 +332,7 @@ bool CheckElements(const PlyHeader &header, std::string &error)
         }
         for (const HeaderProperty &p : e.properties) {
             if (!p.isList) continue;
-            if (p.name == "vertex_indices" || p.name == "vertex_index") {
+            if (IsReadCornerList(e, p)) {
                 if (TypeSize(p.countType) != 1) {
                     error = "face list " + Quote(p.name) + " counted by " + Quote(p.countType) +
                             ": only char or uchar counts (at most 255 corners) are supported";

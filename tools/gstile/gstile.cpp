@@ -187,6 +187,8 @@ int Dispatch(const std::string &command, int argc, char **argv)
         PrintLine(FiguresLine(figures, std::size_t(manifest.Find(id) - manifest.tiles.data()) + 1, manifest.tiles.size()));
         return 0;
     }
+    if ((command == "probe" || command == "share") && manifest.targetCount == 0)
+        return Fail(paths[0] + " was split without a target (--target or --percentage): nothing to share");
     if (command == "probe") {
         Expect(paths.size() == 2, "TILEDIR TILE_ID");
         TileProbe probe;

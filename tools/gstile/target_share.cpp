@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -49,14 +50,15 @@ std::vector<TileShare> ShareTarget(const Manifest &manifest, const std::vector<T
     std::uint64_t ownedSum = 0;
     for (const TileProbe &p : probes) ownedSum += p.owned;
     std::vector<TileShare> shares(probes.size());
-    std::vector<std::pair<double, std::size_t>> remainders; // (fraction lost by rounding down, tile)
+    // Exact in integers: target x owned fits 128 bits.
+    std::vector<std::pair<std::uint64_t, std::size_t>> remainders; // (remainder of the division, tile)
     std::uint64_t given = 0;
     for (std::size_t t = 0; t < probes.size(); ++t) {
-        const double exact = ownedSum ? double(manifest.targetCount) * double(probes[t].owned) / double(ownedSum) : 0;
+        const unsigned __int128 product = (unsigned __int128)manifest.targetCount * probes[t].owned;
         shares[t].id = probes[t].id;
-        shares[t].owned = std::uint64_t(std::floor(exact));
+        shares[t].owned = ownedSum ? std::uint64_t(product / ownedSum) : 0;
         given += shares[t].owned;
-        remainders.push_back({exact - std::floor(exact), t});
+        remainders.push_back({ownedSum ? std::uint64_t(product % ownedSum) : 0, t});
     }
     // Ties by tile order: the same probes give the same shares.
     std::stable_sort(remainders.begin(), remainders.end(),

@@ -24,10 +24,11 @@ bool SetTileOptions(const ResamplingParams &param, Manifest &manifest, std::stri
 {
     ResamplingParams tile = param;
     if (tile.weightWidth == 0) tile.weightWidth = 0.01 * manifest.diagonal;
+    const SizeControl mode = tile.SizeMode(); // the error bound overrides a target
     manifest.maxErrorOfDiagonal = tile.maxErrorFraction;
     tile.maxErrorFraction = 0;
     manifest.targetCount = 0;
-    if (tile.SizeMode() == SizeControl::TargetCount) {
+    if (mode == SizeControl::TargetCount) {
         manifest.targetCount = tile.targetCount > 0
                                    ? std::uint64_t(tile.targetCount)
                                    : std::max<std::uint64_t>(1, std::uint64_t(std::llround(
