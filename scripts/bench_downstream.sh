@@ -59,8 +59,9 @@ grep -q 'value="true" name="confidence"' "$root/sample_data/resample_and_reconst
 read -r -a peers <<< "${PEERS-cgal-hierarchy cgal-grid meshlab-poisson}"
 work="${WORK:-${TMPDIR:-/tmp}/gsbench-downstream}"
 mkdir -p "$out/raw" "$work"
-csv="$out/downstream.csv"
-header="$out/raw/downstream_header.txt"
+# Rows and header are written in the work folder and move into $out when the run is complete.
+csv="$work/downstream.csv"
+header="$work/downstream_header.txt"
 
 # Screened Poisson's depth: the dragon has 437,645 points and details depth 8 cannot hold.
 poisson_depth() { if [ "$1" = dragon ]; then echo 9; else echo 8; fi; }
@@ -143,6 +144,8 @@ for name in "${present[@]}"; do
 done
 
 echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); benchmark time $((SECONDS - started)) s." >> "$header"
+cp "$csv" "$out/downstream.csv" && cp "$header" "$out/raw/downstream_header.txt"
+csv="$out/downstream.csv" header="$out/raw/downstream_header.txt"
 python=python3
 /usr/bin/python3 -c 'import matplotlib' 2>/dev/null && python=/usr/bin/python3
 "$python" "$root/bench/downstream_report.py" --csv "$csv" --header "$header" --out "$out"
