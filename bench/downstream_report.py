@@ -19,6 +19,7 @@ METHOD_LABEL = {
     "ours-none": "ours, unweighted",
     "ours-quality": "ours (confidence = points represented)",
     "ours-area": "ours (confidence = ellipse area)",
+    "ours-sqrt": "ours (confidence = square root of the points represented)",
     "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",
@@ -27,7 +28,7 @@ METHOD_LABEL = {
 }
 METHOD_ORDER = list(METHOD_LABEL)
 PEERS = ["cgal-hierarchy", "cgal-grid", "meshlab-poisson"]
-SHORT = {"ours": "ours", "ours-none": "ours unweighted", "ours-quality": "ours by points", "ours-area": "ours area",
+SHORT = {"ours": "ours", "ours-none": "ours unweighted", "ours-quality": "ours by points", "ours-area": "ours area", "ours-sqrt": "ours sqrt",
          "ours-nofit": "ours no fit", "cgal-hierarchy": "hierarchy",
          "cgal-grid": "grid", "meshlab-poisson": "Poisson disk", "floor": "floor"}
 STATS = [("rms", "RMS"), ("p99", "p99"), ("max", "max")]
@@ -185,7 +186,8 @@ def plot(rows, path):
 
 
 WEIGHTING = {"none": "unweighted", "quality": "with confidence = the points each surfel represents",
-             "area": "with confidence = each ellipse's area"}
+             "area": "with confidence = each ellipse's area",
+             "sqrt": "with confidence = the square root of the points each surfel represents"}
 
 
 def intro(rows):

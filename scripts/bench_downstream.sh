@@ -21,8 +21,8 @@
 #
 # Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), SAMPLES (area samples
 # per mesh for the distance, default 1,000,000), OURS_WEIGHTS (more weightings of ours to
-# reconstruct, each a row ours-WEIGHT, space-separated among quality, none, area, nofit; default
-# quality; nofit is ours with --fit-offsets 0, unweighted: the surfels at their cluster centroids,
+# reconstruct, each a row ours-WEIGHT, space-separated among quality, none, area, sqrt (the square
+# root of the points represented), nofit; default quality; nofit is ours with --fit-offsets 0, unweighted: the surfels at their cluster centroids,
 # what a consumer that reads neither weight nor fit gets from the paper's placement), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
 # FLOOR (0: no reconstruction from the input itself), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
 # point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
@@ -122,10 +122,10 @@ for name in "${present[@]}"; do
     [ "$weight" != "$shipped_weight" ] || continue
     case "$weight" in
       quality|none) reconstruct_and_measure "$name" "ours-$weight" "$work/$name/ours.ply" "$weight" "n=8" yes ;;
-      area)
+      area|sqrt)
         nice "$gsresample" "$input" "$work/$name/ours.surfel" --level 8 > /dev/null
-        /usr/bin/python3 "$root/bench/surfel_area_quality.py" "$work/$name/ours.surfel" "$work/$name/ours_area.ply"
-        reconstruct_and_measure "$name" ours-area "$work/$name/ours_area.ply" area "n=8" yes ;;
+        /usr/bin/python3 "$root/bench/surfel_weights.py" "$work/$name/ours.surfel" "$work/$name/ours_$weight.ply" "$weight"
+        reconstruct_and_measure "$name" "ours-$weight" "$work/$name/ours_$weight.ply" "$weight" "n=8" yes ;;
       nofit)
         nice "$gsresample" "$input" "$work/$name/ours_nofit.ply" --level 8 --fit-offsets 0 > /dev/null
         reconstruct_and_measure "$name" ours-nofit "$work/$name/ours_nofit.ply" none "n=8" yes ;;
