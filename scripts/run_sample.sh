@@ -17,6 +17,9 @@ mkdir -p "$out"
 name="$(basename "$input" .ply)"
 # Transparent huge pages for the resampler's buffers (README: Install).
 export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
+# OpenMP threads that wait sleep instead of spinning, which matters beside other work on the
+# machine (README: Install).
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 server=(xvfb-run -a -s "-screen 0 1280x1024x24" "$build/stage/bin/meshlabserver")
 # .surfel keeps the ellipse axes; the PLY copy (normals, radii) opens in any viewer.
 "${server[@]}" -i "$input" -s "$script" -o "$out/${name}_resampled.surfel" > "$out/${name}_resampled.log" 2>&1 ||
