@@ -170,8 +170,37 @@ TEST_F(PlyInput, AsciiFacesOfMoreCornersThanVcglibHoldsAreRefused)
     std::string face = "600";
     for (int i = 0; i < 600; ++i) face += " 0";
     ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + face + "\n",
-                  "face record 0 has '600' corners; at most 255 are supported");
+                  "face record 0 has 600 corners; at most 255 are supported");
+    // fscanf reads "3000-1" as the count 3000, then -1, as plylib does.
+    std::string glued = "3000-1";
+    for (int i = 0; i < 2999; ++i) glued += " 0";
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + glued + "\n",
+                  "face record 0 has 3000 corners");
     ExpectRead(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n", 3);
+}
+
+TEST_F(PlyInput, FaceCornersThatAreNoVertexAreRefused)
+{
+    // vcglib indexes its vertices with the corners unchecked.
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) +
+                      "4 0 1 2 100000000\n",
+                  "face record 0 names vertex 100000000 of 3");
+    std::string binary(3 * 24, '\0');
+    const std::int32_t corners[3] = {0, 1, -5};
+    binary += std::string(1, char(3));
+    binary.append(reinterpret_cast<const char *>(corners), sizeof corners);
+    ExpectRefused(Header("binary_little_endian", "3", "element face 1\nproperty list uchar int vertex_indices\n") + binary,
+                  "face record 0 names vertex -5 of 3");
+}
+
+TEST_F(PlyInput, ElementsAndTypesVcglibAssertsOnAreRefused)
+{
+    ExpectRefused(Header("ascii", "3", "element edge 1\nproperty int vertex1\nproperty int vertex2\n") + AsciiRows(3) + "0 1\n",
+                  "element 'edge' is not supported");
+    ExpectRefused("ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
+                  "property double z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n" +
+                      std::string(36, '\0'),
+                  "doubles in big-endian files are not supported");
 }
 
 TEST_F(PlyInput, TextureCommentsLongerThanVcglibHoldsAreRefused)

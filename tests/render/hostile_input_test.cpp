@@ -227,4 +227,25 @@ TEST(HostileInput, SplatRenderRefusesListsPlylibWouldWritePast)
         << polygon.errors.toStdString();
 }
 
+TEST(HostileInput, SplatRenderRefusesHeadersPlylibReadsOtherwise)
+{
+    const auto write = [](const std::string &name, const std::string &bytes) {
+        const std::string path = testing::TempDir() + name;
+        std::ofstream(path, std::ios::binary) << bytes;
+        return path;
+    };
+    // A NUL byte hides the format line from plylib's header text, not from its parse.
+    const std::string body = std::string(12, '\0') + std::string(1, char(255)) + std::string(2040, 'A');
+    const ToolRun nul = runSplatRender(write("nul_header.ply", std::string("ply\0\n", 5) +
+        "format binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+        "property list uchar double pad\nend_header\n" + body));
+    EXPECT_NE(nul.exitCode, 0);
+    EXPECT_TRUE(nul.errors.contains("NUL byte")) << nul.errors.toStdString();
+    // plylib reads the count of `element vertex` with atoi, of a missing token.
+    const ToolRun countless = runSplatRender(write("countless.ply", "ply\nformat ascii 1.0\nelement vertex\n"
+        "property float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n"));
+    EXPECT_NE(countless.exitCode, 0);
+    EXPECT_TRUE(countless.errors.contains("needs a name and a count of digits")) << countless.errors.toStdString();
+}
+
 } // namespace

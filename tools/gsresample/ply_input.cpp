@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdio>
 #include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -319,12 +321,19 @@ bool CheckElements(const PlyHeader &header, std::string &error)
             error = "element " + Quote(e.name) + " has records but no properties";
             return false;
         }
-        if (e.name == "tristrips" || e.name == "range_grid") {
+        // vcglib asserts on edges of a mesh without them, and on big-endian doubles it stores.
+        if (e.name == "tristrips" || e.name == "range_grid" || e.name == "edge") {
             error = "element " + Quote(e.name) + " is not supported";
             return false;
         }
-        for (const HeaderProperty &p : e.properties)
+        for (const HeaderProperty &p : e.properties) {
             if (p.isList && e.name != "vertex" && !CheckSkippedList(header, e, p, error)) return false;
+            if (header.bigEndian && (e.name == "vertex" || e.name == "face") && TypeSize(p.type) == 8) {
+                error = "property " + Quote(p.name) + " of element " + Quote(e.name) +
+                        ": doubles in big-endian files are not supported; save the file as little-endian";
+                return false;
+            }
+        }
         if (e.name != "face") continue;
         if (e.Find("vertex_indices") && e.Find("vertex_index")) {
             error = "the face element declares both 'vertex_indices' and 'vertex_index'";
@@ -434,35 +443,117 @@ bool CheckTextureComments(const PlyHeader &header, const std::string &path, std:
     return true;
 }
 
-/// In an ASCII file vcglib reads a list's count as an int whatever its declared type: a face of
-/// more corners than kMaxFaceCorners is refused here, before it reads them. Scans the records up
-/// to the last element with corners; a body vcglib cannot parse is left to vcglib's own error.
-bool CheckAsciiCornerCounts(const std::string &path, const PlyHeader &header, std::string &error)
+/// Reads a body value as plylib does, from `file` at its position (ReadFaceCorners).
+class BodyReader
+{
+public:
+    BodyReader(std::FILE *file, const PlyHeader &header) : file_(file), header_(header) {}
+
+    /// A scalar plylib stores or skips: false where plylib's read stops the file.
+    bool Scalar(const std::string &type)
+    {
+        if (header_.binary) return Bytes(TypeSize(type), nullptr);
+        // Skipped scalars go on after a value that does not parse, without consuming it.
+        return IsFloatingType(type) ? std::fscanf(file_, "%f", &float_) != EOF : std::fscanf(file_, "%d", &int_) != EOF;
+    }
+    /// A list count: one byte in binary files (signed for char, as stored), an int in ASCII.
+    bool Count(const std::string &countType, bool stored, long &count)
+    {
+        if (!header_.binary) {
+            if (std::fscanf(file_, "%d", &int_) != 1) return false;
+            count = int_;
+            return true;
+        }
+        unsigned char byte;
+        if (!Bytes(1, &byte)) return false;
+        count = stored && CanonicalType(countType) == "char" ? long(static_cast<signed char>(byte)) : long(byte);
+        return true;
+    }
+    /// A face corner as plylib stores it in an int (short items through a short).
+    bool Corner(const std::string &type, long long &corner)
+    {
+        const std::string canonical = CanonicalType(type);
+        if (!header_.binary) {
+            long long value;
+            if (std::fscanf(file_, "%lld", &value) != 1) return false;
+            corner = canonical == "short" ? static_cast<short>(value) : static_cast<int>(value);
+            return true;
+        }
+        unsigned char bytes[4];
+        const int size = TypeSize(type);
+        if (!Bytes(size, bytes)) return false;
+        if (header_.bigEndian) std::reverse(bytes, bytes + size);
+        std::int32_t word = 0;
+        std::int16_t half = 0;
+        if (size == 2) std::memcpy(&half, bytes, 2);
+        else std::memcpy(&word, bytes, 4);
+        corner = size == 2 ? half : word;
+        return true;
+    }
+    /// An item of a list plylib skips: read as a float in ASCII.
+    bool SkippedItem(const std::string &type)
+    {
+        return header_.binary ? Bytes(TypeSize(type), nullptr) : std::fscanf(file_, "%f", &float_) == 1;
+    }
+
+private:
+    bool Bytes(int size, unsigned char *out)
+    {
+        unsigned char ignored[8];
+        return std::fread(out ? out : ignored, 1, std::size_t(size), file_) == std::size_t(size);
+    }
+    std::FILE *file_;
+    const PlyHeader &header_;
+    int int_ = 0;
+    float float_ = 0;
+};
+
+/// vcglib reads each face's corners into 512 slots (in ASCII with an int count whatever its
+/// declared type) and indexes its vertices with them unchecked. The records up to the last
+/// element with corners are read here first, each value as plylib reads it: a face of more than
+/// kMaxFaceCorners corners, or a corner that is not a vertex, is refused. Where plylib's own read
+/// would stop, this one stops too and leaves the file to vcglib's error.
+bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::string &error)
 {
     std::size_t last = header.elements.size();
-    for (std::size_t e = 0; e < header.elements.size(); ++e)
+    std::uint64_t vertices = 0;
+    for (std::size_t e = 0; e < header.elements.size(); ++e) {
+        if (header.elements[e].name == "vertex") vertices = header.elements[e].count;
         for (const HeaderProperty &p : header.elements[e].properties)
             if (IsReadCornerList(header.elements[e], p)) last = e;
-    if (header.binary || last == header.elements.size()) return true;
-    std::ifstream in(path, std::ios::binary);
-    in.seekg(std::streamoff(header.bodyOffset));
-    std::string token;
+    }
+    if (last == header.elements.size()) return true;
+    std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file || ::fseeko(file.get(), off_t(header.bodyOffset), SEEK_SET) != 0) return true;
+    BodyReader read(file.get(), header);
     for (std::size_t e = 0; e <= last; ++e) {
         const HeaderElement &element = header.elements[e];
         for (std::uint64_t r = 0; r < element.count; ++r) {
             for (const HeaderProperty &p : element.properties) {
-                if (!(in >> token)) return true;
-                if (!p.isList) continue;
-                char *end = nullptr;
-                const long count = std::strtol(token.c_str(), &end, 10);
-                if (end == token.c_str() || *end != '\0') return true;
-                if (IsReadCornerList(element, p) && (count < 0 || count > kMaxFaceCorners)) {
-                    error = "face record " + std::to_string(r) + " has " + Quote(token) + " corners; at most " +
+                if (!p.isList) {
+                    if (!read.Scalar(p.type)) return true;
+                    continue;
+                }
+                const bool corners = IsReadCornerList(element, p);
+                long count = 0;
+                if (!read.Count(p.countType, corners, count)) return true;
+                if (corners && count > kMaxFaceCorners) {
+                    error = "face record " + std::to_string(r) + " has " + std::to_string(count) + " corners; at most " +
                             std::to_string(kMaxFaceCorners) + " are supported";
                     return false;
                 }
-                for (long i = 0; i < count; ++i)
-                    if (!(in >> token)) return true;
+                for (long i = 0; i < count; ++i) {
+                    long long corner = 0;
+                    if (!corners) {
+                        if (!read.SkippedItem(p.type)) return true;
+                    } else if (!read.Corner(p.type, corner)) {
+                        return true;
+                    } else if (corner < 0 || std::uint64_t(corner) >= vertices) {
+                        error = "face record " + std::to_string(r) + " names vertex " + std::to_string(corner) +
+                                " of " + std::to_string(vertices);
+                        return false;
+                    }
+                }
             }
         }
     }
@@ -504,7 +595,7 @@ bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::st
     const std::uint64_t fileSize = std::uint64_t(info.st_size);
     if (!ReadHeader(in, fileSize, header, error) || !CheckElements(header, error) ||
         !CheckBodySize(header, fileSize, error) || !CheckTextureComments(header, path, error) ||
-        !CheckAsciiCornerCounts(path, header, error)) {
+        !CheckFaceCorners(path, header, error)) {
         error = Bounded(error);
         return false;
     }

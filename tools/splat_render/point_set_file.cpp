@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -42,24 +43,48 @@ int typeBytes(int plyType)
 
 bool isFloating(int plyType) { return plyType == vcg::ply::T_FLOAT || plyType == vcg::ply::T_DOUBLE; }
 
-// Whether the header's format line names a binary encoding (its tokens, as plylib reads them).
-bool isBinary(const vcg::ply::PlyFile &file)
+// Reads the header as plylib will (lines of at most 510 bytes, in the first 64 KiB) and refuses
+// what plylib does not survive: NUL bytes (plylib's header text stops at them, its parse does
+// not), longer lines (plylib parses them in pieces), element lines without a count of digits
+// (plylib calls atoi on a missing token, asserts on a negative count). True for a binary body.
+bool checkHeader(const std::string &path)
 {
-    std::istringstream header(file.GetHeader());
-    std::string line, keyword, format;
-    while (std::getline(header, line)) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text(1 << 16, '\0');
+    in.read(&text[0], std::streamsize(text.size()));
+    text.resize(std::size_t(in.gcount()));
+    bool binary = false;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = text.find('\n', start);
+        if (end == std::string::npos)
+            throw std::runtime_error(path + ": no end_header in the first 64 KiB");
+        const std::string line = text.substr(start, end - start);
+        start = end + 1;
+        if (line.find('\0') != std::string::npos || line.size() >= 500)
+            throw std::runtime_error(path + ": header line with a NUL byte or of 500 bytes or more");
         std::istringstream tokens(line);
-        if (tokens >> keyword >> format && keyword == "format") return format.compare(0, 6, "binary") == 0;
+        std::string keyword, first, second, extra;
+        tokens >> keyword >> first >> second;
+        if (keyword == "end_header")
+            return binary;
+        if (keyword == "format")
+            binary = first.compare(0, 6, "binary") == 0;
+        if (keyword == "element" &&
+            (second.empty() || second.size() > 9 || second.find_first_not_of("0123456789") != std::string::npos ||
+             (tokens >> extra)))
+            throw std::runtime_error(path + ": element line '" + surfel_io::printableText(line, 60) +
+                                     "' needs a name and a count of digits");
     }
-    return false;
 }
 
 // plylib skips a list it does not read, in a binary file, through a 512-byte buffer, its count
 // read as one byte whatever its type: other binary lists pass only with one-byte counts and items
 // of at most two bytes (ASCII lists are skipped item by item). `corners` is the one list read.
-void checkSkippedLists(const vcg::ply::PlyFile &file, const vcg::ply::PlyProperty *corners, const std::string &path)
+void checkSkippedLists(const vcg::ply::PlyFile &file, bool binary, const vcg::ply::PlyProperty *corners,
+                       const std::string &path)
 {
-    if (!isBinary(file)) return;
+    if (!binary) return;
     for (const vcg::ply::PlyElement &element : file.elements) {
         for (const vcg::ply::PlyProperty &p : element.props) {
             if (!p.islist || &p == corners || (typeBytes(p.tipoindex) == 1 && typeBytes(p.tipo) <= 2)) continue;
@@ -137,9 +162,9 @@ VertexProperties requestVertexProperties(vcg::ply::PlyFile &file, vcg::ply::PlyE
 // Asks plylib to store the face element's corner list as a FaceRecord, in binary files whose
 // corners are integers counted by one byte (at most 255 of the record's 512; in ASCII plylib reads
 // any count, so ASCII faces are not read); the list stored, or null.
-vcg::ply::PlyProperty *requestFaces(vcg::ply::PlyFile &file, vcg::ply::PlyElement &faceElement)
+vcg::ply::PlyProperty *requestFaces(vcg::ply::PlyFile &file, bool binary, vcg::ply::PlyElement &faceElement)
 {
-    if (!isBinary(file))
+    if (!binary)
         return nullptr;
     for (const char *name : {"vertex_indices", "vertex_index"}) {
         vcg::ply::PlyProperty *list = faceElement.FindProp(name);
@@ -193,6 +218,7 @@ void readFaces(vcg::ply::PlyFile &file, int count, const std::string &path, std:
 
 PointSetFile readPointSetFile(const std::string &path)
 {
+    const bool binary = checkHeader(path);
     vcg::ply::PlyFile file;
     if (file.Open(path.c_str(), vcg::ply::PlyFile::MODE_READ) != 0)
         throw std::runtime_error("cannot read " + path + " as PLY (plylib error " + std::to_string(file.GetError()) + ")");
@@ -201,9 +227,9 @@ PointSetFile readPointSetFile(const std::string &path)
         throw std::runtime_error(path + " has no vertex element");
     const VertexProperties has = requestVertexProperties(file, *vertexElement, path);
     vcg::ply::PlyElement *faceElement = findElement(file, "face");
-    vcg::ply::PlyProperty *corners = faceElement != nullptr ? requestFaces(file, *faceElement) : nullptr;
+    vcg::ply::PlyProperty *corners = faceElement != nullptr ? requestFaces(file, binary, *faceElement) : nullptr;
     const bool hasFaces = corners != nullptr;
-    checkSkippedLists(file, corners, path);
+    checkSkippedLists(file, binary, corners, path);
 
     PointSetFile result;
     std::vector<float> fitOffsets;
