@@ -176,7 +176,7 @@ Output ReadTiles(const std::string &dir, const Manifest &manifest)
 
 void PrintFigure(const char *name, double whole, double tiled)
 {
-    std::printf("%s_whole=%.6g\n%s_tiled=%.6g\n%s_diff_pct=%.3f\n", name, whole, name, tiled, name,
+    std::printf("%s_whole=%.10g\n%s_tiled=%.10g\n%s_diff_pct=%.3f\n", name, whole, name, tiled, name,
                 100.0 * (tiled - whole) / whole);
 }
 
