@@ -490,6 +490,13 @@ public:
         corner = size == 2 ? half : word;
         return true;
     }
+    /// Passes over the records of a binary element without lists in one seek.
+    bool SkipFixedRecords(const HeaderElement &element)
+    {
+        std::uint64_t bytes = 0;
+        for (const HeaderProperty &p : element.properties) bytes += std::uint64_t(TypeSize(p.type));
+        return ::fseeko(file_, off_t(bytes * element.count), SEEK_CUR) == 0;
+    }
     /// An item of a list plylib skips: read as a float in ASCII.
     bool SkippedItem(const std::string &type)
     {
@@ -528,6 +535,13 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
     BodyReader read(file.get(), header);
     for (std::size_t e = 0; e <= last; ++e) {
         const HeaderElement &element = header.elements[e];
+        const bool fixedSize = std::none_of(element.properties.begin(), element.properties.end(),
+                                            [](const HeaderProperty &p) { return p.isList; });
+        // Binary records without lists hold no corners: their bytes need no reading (the vertices).
+        if (header.binary && fixedSize) {
+            if (!read.SkipFixedRecords(element)) return true;
+            continue;
+        }
         for (std::uint64_t r = 0; r < element.count; ++r) {
             for (const HeaderProperty &p : element.properties) {
                 if (!p.isList) {
