@@ -84,25 +84,42 @@ const TileEntry *Manifest::Find(int id) const
     return nullptr;
 }
 
-bool WriteManifest(const std::string &dir, const Manifest &manifest, std::string &error)
+bool WriteJsonFile(const std::string &path, const json &j, std::string &error)
 {
-    const json j = ToJson(manifest);
-    return WriteAtomically(ManifestPath(dir), [&j](std::ostream &out, std::string &) {
+    return WriteAtomically(path, [&j](std::ostream &out, std::string &) {
         out << j.dump(1) << "\n";
         return bool(out);
     }, error);
 }
 
-bool ReadManifest(const std::string &dir, Manifest &manifest, std::string &error)
+bool ReadJsonFile(const std::string &path, const std::string &missingHint, json &j, std::string &error)
 {
-    const std::string path = ManifestPath(dir);
     std::ifstream in(path);
     if (!in) {
-        error = "cannot open " + path + " (is " + dir + " a tile directory made by gstile split?)";
+        error = "cannot open " + path + " (" + missingHint + ")";
         return false;
     }
     try {
-        FromJson(json::parse(in), manifest);
+        j = json::parse(in);
+    } catch (const std::exception &e) {
+        error = path + " is not valid JSON: " + e.what();
+        return false;
+    }
+    return true;
+}
+
+bool WriteManifest(const std::string &dir, const Manifest &manifest, std::string &error)
+{
+    return WriteJsonFile(ManifestPath(dir), ToJson(manifest), error);
+}
+
+bool ReadManifest(const std::string &dir, Manifest &manifest, std::string &error)
+{
+    const std::string path = ManifestPath(dir);
+    json j;
+    if (!ReadJsonFile(path, "is " + dir + " a tile directory made by gstile split?", j, error)) return false;
+    try {
+        FromJson(j, manifest);
     } catch (const std::exception &e) {
         error = path + " is not a valid manifest: " + e.what();
         return false;

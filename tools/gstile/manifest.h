@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "tile_grid.h"
 
 namespace gstile {
@@ -42,6 +44,10 @@ struct Manifest
 };
 
 bool WriteManifest(const std::string &dir, const Manifest &manifest, std::string &error);
+/// The tile directory's JSON files (the manifest, target_share.h's probes and shares): written
+/// atomically (WriteAtomically), read with an error naming the file (`missingHint` when absent).
+bool WriteJsonFile(const std::string &path, const nlohmann::json &j, std::string &error);
+bool ReadJsonFile(const std::string &path, const std::string &missingHint, nlohmann::json &j, std::string &error);
 bool ReadManifest(const std::string &dir, Manifest &manifest, std::string &error);
 
 } // namespace gstile

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -14,30 +13,6 @@ using nlohmann::json;
 namespace gstile {
 
 namespace {
-
-bool WriteJson(const std::string &path, const json &j, std::string &error)
-{
-    return WriteAtomically(path, [&j](std::ostream &out, std::string &) {
-        out << j.dump(1) << "\n";
-        return bool(out);
-    }, error);
-}
-
-bool ReadJson(const std::string &path, const char *missingHint, json &j, std::string &error)
-{
-    std::ifstream in(path);
-    if (!in) {
-        error = "cannot open " + path + " (" + missingHint + ")";
-        return false;
-    }
-    try {
-        j = json::parse(in);
-    } catch (const std::exception &e) {
-        error = path + " is not valid: " + e.what();
-        return false;
-    }
-    return true;
-}
 
 constexpr const char *kRunProbeAndShare = "with a target, run `gstile probe` on every tile, then `gstile share`";
 
@@ -76,13 +51,13 @@ std::vector<TileShare> ShareTarget(const Manifest &manifest, const std::vector<T
 
 bool WriteProbe(const std::string &dir, const TileProbe &probe, std::string &error)
 {
-    return WriteJson(TilePath(dir, probe.id, ".probe"), {{"clusters", probe.clusters}, {"owned", probe.owned}}, error);
+    return WriteJsonFile(TilePath(dir, probe.id, ".probe"), {{"clusters", probe.clusters}, {"owned", probe.owned}}, error);
 }
 
 bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &error)
 {
     json j;
-    if (!ReadJson(TilePath(dir, id, ".probe"), kRunProbeAndShare, j, error)) return false;
+    if (!ReadJsonFile(TilePath(dir, id, ".probe"), kRunProbeAndShare, j, error)) return false;
     try {
         probe.id = id;
         probe.clusters = j.at("clusters").get<std::uint64_t>();
@@ -102,13 +77,13 @@ bool WriteShares(const std::string &dir, const Manifest &manifest, std::vector<T
     shares = ShareTarget(manifest, probes);
     json list = json::array();
     for (const TileShare &s : shares) list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}});
-    return WriteJson(SharesPath(dir), {{"target", manifest.targetCount}, {"tiles", list}}, error);
+    return WriteJsonFile(SharesPath(dir), {{"target", manifest.targetCount}, {"tiles", list}}, error);
 }
 
 bool ReadShare(const std::string &dir, int id, TileShare &share, std::string &error)
 {
     json j;
-    if (!ReadJson(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
+    if (!ReadJsonFile(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
     try {
         for (const json &t : j.at("tiles")) {
             if (t.at("id").get<int>() != id) continue;
