@@ -6,7 +6,8 @@
 
 With --input the input is split into TILEDIR first (`gstile split`, on this machine); else
 TILEDIR holds a split already. With a target count in the split, a first round of tasks runs
-`gstile probe TILEDIR ID` and this machine `gstile share TILEDIR` (docs/tiling.md). Each task
+`gstile probe TILEDIR ID` and this machine `gstile share TILEDIR`, and after the runs `gstile
+adjust TILEDIR` gives the tiles that missed their share a new count, to run again (docs/tiling.md). Each task
 runs `gstile run TILEDIR ID` on a worker, which must see
 TILEDIR and the gstile binary at the same paths (a shared folder). Without --scheduler a local
 cluster of --workers processes is started. A worker lost in the middle of a task is replaced by
@@ -65,9 +66,11 @@ def read_manifest(tile_dir):
         return json.load(manifest)
 
 
-def run_tiles(client, gstile, command, tile_dir, ids, threads):
-    """Submits every tile, prints each one's line as it completes; stops at the first failure."""
-    futures = [client.submit(run_tile, gstile, command, tile_dir, i, threads, key=f"gstile-{command}-{i}", pure=False)
+def run_tiles(client, gstile, command, tile_dir, ids, threads, round_number=0):
+    """Submits every tile, prints each one's line as it completes; stops at the first failure.
+    A tile run again after `gstile adjust` is a new task (its round in the key)."""
+    futures = [client.submit(run_tile, gstile, command, tile_dir, i, threads, key=f"gstile-{command}-{i}-{round_number}",
+                             pure=False)
                for i in ids]
     done = 0
     for future in as_completed(futures):
@@ -78,6 +81,14 @@ def run_tiles(client, gstile, command, tile_dir, ids, threads):
             sys.exit(f"gstile_dask: error: {failure}")
         done += 1
         print(f"[dask] {command} {done}/{len(ids)} done | {line}", flush=True)
+
+
+def pending_tiles(gstile, tile_dir):
+    """The tiles whose result is missing or out of date (after `gstile adjust`: those to run again)."""
+    proc = subprocess.run([gstile, "tiles", tile_dir, "--pending"], capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.exit(f"gstile_dask: error: {proc.stderr.strip()}")
+    return [int(line) for line in proc.stdout.split()]
 
 
 def main():
@@ -101,6 +112,14 @@ def main():
             run_tiles(client, gstile, "probe", tile_dir, ids, args.threads)
             check_call([gstile, "share", tile_dir])
         run_tiles(client, gstile, "run", tile_dir, ids, args.threads)
+        round_number = 0
+        while manifest["target_count"] > 0:
+            check_call([gstile, "adjust", tile_dir])
+            ids = pending_tiles(gstile, tile_dir)
+            if not ids:
+                break
+            round_number += 1
+            run_tiles(client, gstile, "run", tile_dir, ids, args.threads, round_number)
     finally:
         client.close()
         if cluster is not None:

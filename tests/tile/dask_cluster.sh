@@ -4,7 +4,7 @@
 # of the same tile directory:
 #   1. the output is identical (cmp);
 #      With a target count the driver's first round probes the tiles and the shares follow; the
-#      output is identical to the sequential probe, share, run and merge;
+#      output is identical to the sequential probe, share, run, adjust (and runs again) and merge;
 #   2. one worker killed (SIGKILL) in the middle of the run: its task runs again on the other
 #      worker, and the output is still identical;
 #   3. a tile whose core file is damaged stops the run with an error naming the tile.
@@ -48,8 +48,11 @@ check "two workers: identical to the sequential run" cmp sequential.surfel two_w
 for id in $("$GSTILE" tiles target_tiles); do "$GSTILE" probe target_tiles "$id" > /dev/null; done
 "$GSTILE" share target_tiles > /dev/null
 for id in $("$GSTILE" tiles target_tiles); do "$GSTILE" run target_tiles "$id" > /dev/null; done
+while "$GSTILE" adjust target_tiles > /dev/null && [ -n "$("$GSTILE" tiles target_tiles --pending)" ]; do
+  for id in $("$GSTILE" tiles target_tiles --pending); do "$GSTILE" run target_tiles "$id" > /dev/null; done
+done
 "$GSTILE" merge target_tiles target_sequential.surfel > /dev/null
-rm -f target_tiles/tile_*.surfel target_tiles/tile_*.probe target_tiles/shares.json
+rm -f target_tiles/tile_*.surfel target_tiles/tile_*.probe target_tiles/tile_*.kept target_tiles/shares.json
 /usr/bin/python3 "$DRIVER" target_tiles target_dask.surfel --scheduler "$scheduler" --gstile "$PWD/slow_gstile" > target.log
 check "a target: the probe round, then identical to the sequential run" cmp target_sequential.surfel target_dask.surfel
 check "a target: every tile probed" grep -q "probe $("$GSTILE" tiles target_tiles | wc -l)/.* done |" target.log

@@ -3,9 +3,10 @@
 //   gstile split INPUT.ply TILEDIR [--tile-points N] [--halo-spacings X] [gsresample options]
 //   gstile run TILEDIR TILE_ID
 //   gstile probe TILEDIR TILE_ID, gstile share TILEDIR   (with a target, before run: target_share.h)
+//   gstile adjust TILEDIR                                (with a target, after run: target_share.h)
 //   gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply
 //   gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]
-//   gstile tiles TILEDIR
+//   gstile tiles TILEDIR [--pending]
 //
 // Exit status: 0 done, 1 a failure (one line `gstile: error: ...`, naming the tile when a tile
 // failed), 2 a bad command line.
@@ -28,14 +29,16 @@ const char *const kUsage =
     "usage: gstile split INPUT.ply TILEDIR [--tile-points N] [--halo-spacings X] [OPTION VALUE]...\n"
     "       gstile run TILEDIR TILE_ID\n"
     "       gstile probe TILEDIR TILE_ID, then gstile share TILEDIR   (with a target, before run)\n"
+    "       gstile adjust TILEDIR   (with a target, after run: then run the tiles of tiles --pending)\n"
     "       gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply\n"
     "       gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]\n"
-    "       gstile tiles TILEDIR   (the ids of the tiles, one a line)\n"
+    "       gstile tiles TILEDIR [--pending]   (the ids of the tiles, or of those left to run, one a line)\n"
     "split streams a binary little-endian PLY (x y z nx ny nz) into tiles of about N points with\n"
     "their halo (default 4000000; a run takes up to about 200 B a point), X sample spacings wide\n"
     "(default 24); run resamples one tile and keeps the surfels it owns; merge concatenates them;\n"
     "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). With --target or\n"
-    "--percentage, probe runs each tile at the level and share divides the count by their detail.\n"
+    "--percentage, probe runs each tile at the level and share divides the count by their detail;\n"
+    "adjust gives the tiles that missed their share a new count, up to 3 times a tile.\n"
     "gsresample's options:\n";
 
 struct UsageError
@@ -119,6 +122,32 @@ int WriteAndReportShares(const std::string &dir, const Manifest &manifest)
     return 0;
 }
 
+/// Runs the tiles `ids` and prints each one's figures line.
+int RunTiles(const std::string &dir, const Manifest &manifest, const std::vector<int> &ids)
+{
+    for (std::size_t t = 0; t < ids.size(); ++t) {
+        TileRunFigures figures;
+        std::string error;
+        if (!RunTile(dir, manifest, ids[t], figures, error)) return Fail(error);
+        PrintLine(FiguresLine(figures, t + 1, ids.size()));
+    }
+    return 0;
+}
+
+/// One round of adjustment (target_share.h); `rerun` receives the tiles to run again.
+int AdjustAndReport(const std::string &dir, const Manifest &manifest, std::vector<int> &rerun)
+{
+    AdjustFigures figures;
+    std::string error;
+    if (!AdjustShares(dir, manifest, figures, error)) return Fail(error);
+    char line[200];
+    std::snprintf(line, sizeof line, "[adjust] the tiles kept %llu of %llu surfels; %zu tile(s) to run again",
+                  (unsigned long long)figures.kept, (unsigned long long)manifest.targetCount, figures.rerun.size());
+    PrintLine(line);
+    rerun = figures.rerun;
+    return 0;
+}
+
 int RunAll(const std::string &dir, const Manifest &manifest)
 {
     for (std::size_t t = 0; manifest.targetCount > 0 && t < manifest.tiles.size(); ++t) {
@@ -132,11 +161,12 @@ int RunAll(const std::string &dir, const Manifest &manifest)
     }
     if (manifest.targetCount > 0)
         if (const int status = WriteAndReportShares(dir, manifest)) return status;
-    for (std::size_t t = 0; t < manifest.tiles.size(); ++t) {
-        TileRunFigures figures;
-        std::string error;
-        if (!RunTile(dir, manifest, manifest.tiles[t].id, figures, error)) return Fail(error);
-        PrintLine(FiguresLine(figures, t + 1, manifest.tiles.size()));
+    std::vector<int> ids;
+    for (const TileEntry &tile : manifest.tiles) ids.push_back(tile.id);
+    while (!ids.empty()) {
+        if (const int status = RunTiles(dir, manifest, ids)) return status;
+        if (manifest.targetCount == 0) break;
+        if (const int status = AdjustAndReport(dir, manifest, ids)) return status;
     }
     return 0;
 }
@@ -187,7 +217,7 @@ int Dispatch(const std::string &command, int argc, char **argv)
         PrintLine(FiguresLine(figures, std::size_t(manifest.Find(id) - manifest.tiles.data()) + 1, manifest.tiles.size()));
         return 0;
     }
-    if ((command == "probe" || command == "share") && manifest.targetCount == 0)
+    if ((command == "probe" || command == "share" || command == "adjust") && manifest.targetCount == 0)
         return Fail(paths[0] + " was split without a target (--target or --percentage): nothing to share");
     if (command == "probe") {
         Expect(paths.size() == 2, "TILEDIR TILE_ID");
@@ -201,12 +231,21 @@ int Dispatch(const std::string &command, int argc, char **argv)
         Expect(paths.size() == 1, "TILEDIR");
         return WriteAndReportShares(paths[0], manifest);
     }
+    if (command == "adjust") {
+        Expect(paths.size() == 1, "TILEDIR");
+        std::vector<int> rerun;
+        return AdjustAndReport(paths[0], manifest, rerun);
+    }
     if (command == "merge") {
         Expect(paths.size() == 2, "TILEDIR OUTPUT");
         return MergeTiles(paths[0], manifest, paths[1]);
     }
-    Expect(command == "tiles" && paths.size() == 1, "a command: split, run, probe, share, merge, all or tiles");
-    for (const TileEntry &tile : manifest.tiles) std::printf("%d\n", tile.id);
+    Expect(command == "tiles" && (paths.size() == 1 || (paths.size() == 2 && paths[1] == "--pending")),
+           "a command: split, run, probe, share, adjust, merge, all or tiles");
+    std::vector<int> ids;
+    for (const TileEntry &tile : manifest.tiles) ids.push_back(tile.id);
+    if (paths.size() == 2 && !PendingTiles(paths[0], manifest, ids, error)) return Fail(error);
+    for (const int id : ids) std::printf("%d\n", id);
     return 0;
 }
 

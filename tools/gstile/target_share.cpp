@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -69,35 +70,178 @@ bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &er
     return true;
 }
 
+namespace {
+
+bool WriteShareList(const std::string &dir, const Manifest &manifest, const std::vector<TileShare> &shares,
+                    std::string &error)
+{
+    json list = json::array();
+    for (const TileShare &s : shares) {
+        json tried = json::array();
+        for (const TileTrial &t : s.tried) tried.push_back({t.target, t.owned});
+        list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"tried", tried}});
+    }
+    return WriteJsonFile(SharesPath(dir), {{"target", manifest.targetCount}, {"tiles", list}}, error);
+}
+
+bool ReadShareList(const std::string &dir, std::vector<TileShare> &shares, std::string &error)
+{
+    json j;
+    if (!ReadJsonFile(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
+    try {
+        shares.clear();
+        for (const json &t : j.at("tiles")) {
+            TileShare share;
+            share.id = t.at("id").get<int>();
+            share.owned = t.at("owned").get<std::uint64_t>();
+            share.target = t.at("target").get<std::uint64_t>();
+            for (const json &trial : t.at("tried"))
+                share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
+            shares.push_back(share);
+        }
+    } catch (const std::exception &e) {
+        error = SharesPath(dir) + " is not valid: " + e.what();
+        return false;
+    }
+    return true;
+}
+
+/// The trial that kept the count nearest to the share (the latest of equals).
+const TileTrial &NearestTrial(const TileShare &share)
+{
+    const auto miss = [&share](const TileTrial &t) {
+        return t.owned > share.owned ? t.owned - share.owned : share.owned - t.owned;
+    };
+    const TileTrial *nearest = &share.tried.front();
+    for (const TileTrial &t : share.tried)
+        if (miss(t) <= miss(*nearest)) nearest = &t;
+    return *nearest;
+}
+
+} // namespace
+
 bool WriteShares(const std::string &dir, const Manifest &manifest, std::vector<TileShare> &shares, std::string &error)
 {
     std::vector<TileProbe> probes(manifest.tiles.size());
     for (std::size_t t = 0; t < probes.size(); ++t)
         if (!ReadProbe(dir, manifest.tiles[t].id, probes[t], error)) return false;
     shares = ShareTarget(manifest, probes);
-    json list = json::array();
-    for (const TileShare &s : shares) list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}});
-    return WriteJsonFile(SharesPath(dir), {{"target", manifest.targetCount}, {"tiles", list}}, error);
+    return WriteShareList(dir, manifest, shares, error);
 }
 
 bool ReadShare(const std::string &dir, int id, TileShare &share, std::string &error)
 {
-    json j;
-    if (!ReadJsonFile(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
-    try {
-        for (const json &t : j.at("tiles")) {
-            if (t.at("id").get<int>() != id) continue;
-            share.id = id;
-            share.owned = t.at("owned").get<std::uint64_t>();
-            share.target = t.at("target").get<std::uint64_t>();
-            return true;
-        }
-    } catch (const std::exception &e) {
-        error = SharesPath(dir) + " is not valid: " + e.what();
-        return false;
+    std::vector<TileShare> shares;
+    if (!ReadShareList(dir, shares, error)) return false;
+    for (const TileShare &s : shares) {
+        if (s.id != id) continue;
+        share = s;
+        return true;
     }
     error = SharesPath(dir) + " has no share for tile " + std::to_string(id);
     return false;
+}
+
+bool WriteOutcome(const std::string &dir, int id, const TileOutcome &outcome, std::string &error)
+{
+    return WriteJsonFile(TilePath(dir, id, ".kept"), {{"target", outcome.target}, {"owned", outcome.owned}}, error);
+}
+
+bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::string &error)
+{
+    const std::string path = TilePath(dir, id, ".kept");
+    if (!std::ifstream(path)) return false;
+    json j;
+    if (!ReadJsonFile(path, "", j, error)) return false;
+    try {
+        outcome.target = j.at("target").get<std::uint64_t>();
+        outcome.owned = j.at("owned").get<std::uint64_t>();
+    } catch (const std::exception &e) {
+        error = path + " is not valid: " + e.what();
+        return false;
+    }
+    return true;
+}
+
+bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t points)
+{
+    const bool tried = std::any_of(share.tried.begin(), share.tried.end(),
+                                   [&outcome](const TileTrial &t) { return t.target == outcome.target; });
+    if (!tried) share.tried.push_back(outcome);
+    if (outcome.owned == share.owned) return false;
+    if (share.tried.size() > kAdjustRounds) { // no new count: the nearest one tried
+        share.target = NearestTrial(share).target;
+        return share.target != outcome.target;
+    }
+    // The nearest counts that kept too few and too many.
+    const TileTrial *low = nullptr, *high = nullptr;
+    for (const TileTrial &t : share.tried) {
+        if (t.owned == share.owned) { // runs are deterministic: that count again
+            share.target = t.target;
+            return true;
+        }
+        if (t.owned < share.owned && (low == nullptr || t.target > low->target)) low = &t;
+        if (t.owned > share.owned && (high == nullptr || t.target < high->target)) high = &t;
+    }
+    std::uint64_t next;
+    if (low != nullptr && high != nullptr) {
+        if (high->target <= low->target + 1) { // nothing left between (or a count keeping fewer above one keeping more)
+            share.target = NearestTrial(share).target;
+            return share.target != outcome.target;
+        }
+        const double step = double(share.owned - low->owned) / double(high->owned - low->owned);
+        next = low->target + std::uint64_t(std::llround(step * double(high->target - low->target)));
+        next = std::min(std::max(next, low->target + 1), high->target - 1);
+    } else {
+        // One side only: the made-to-owned ratio of the last run carries the miss over to the count.
+        const double madePerOwned = outcome.owned ? double(outcome.target) / double(outcome.owned) : 2.0;
+        const auto change = std::uint64_t(std::ceil(
+            madePerOwned * double(outcome.owned < share.owned ? share.owned - outcome.owned : outcome.owned - share.owned)));
+        next = outcome.owned < share.owned ? std::min(points, outcome.target + std::max<std::uint64_t>(1, change))
+                                           : outcome.target - std::min(outcome.target - 1, std::max<std::uint64_t>(1, change));
+    }
+    if (next == outcome.target) return false;
+    share.target = next;
+    return true;
+}
+
+bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error)
+{
+    std::vector<TileShare> shares;
+    if (!ReadShareList(dir, shares, error)) return false;
+    figures = AdjustFigures();
+    for (TileShare &share : shares) {
+        const TileEntry *tile = manifest.Find(share.id);
+        TileOutcome outcome;
+        const bool ran = ReadOutcome(dir, share.id, outcome, error);
+        if (!error.empty()) return false;
+        if (tile == nullptr || !ran || outcome.target != share.target) {
+            error = "tile " + std::to_string(share.id) + " has not run at its share's count: gstile run " + dir + " " +
+                    std::to_string(share.id);
+            return false;
+        }
+        figures.kept += outcome.owned;
+        if (AdjustShare(share, outcome, tile->corePoints + tile->haloPoints)) figures.rerun.push_back(share.id);
+    }
+    return WriteShareList(dir, manifest, shares, error);
+}
+
+bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error)
+{
+    std::vector<TileShare> shares;
+    if (manifest.targetCount > 0 && !ReadShareList(dir, shares, error)) return false;
+    pending.clear();
+    for (const TileEntry &tile : manifest.tiles) {
+        bool done = bool(std::ifstream(TilePath(dir, tile.id, ".surfel")));
+        if (done && manifest.targetCount > 0) {
+            const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
+            TileOutcome outcome;
+            done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target;
+            if (!error.empty()) return false;
+        }
+        if (!done) pending.push_back(tile.id);
+    }
+    return true;
 }
 
 } // namespace gstile

@@ -164,7 +164,8 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         kept.push_back(tile.result.surfels[s]);
         figures.ownedMembers += std::uint64_t(tile.result.surfels[s].memberCount);
     }
-    if (!WriteResult(TilePath(dir, id, ".surfel"), kept, error)) {
+    if (!WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
+        (manifest.targetCount > 0 && !WriteOutcome(dir, id, {share.target, kept.size()}, error))) {
         error = name + ": " + error;
         return false;
     }

@@ -37,7 +37,8 @@ std::vector<bool> OwnedSurfels(const vcg::gaussphere::ResamplingResult &result,
                                const std::vector<std::uint64_t> &indices, std::uint64_t corePoints);
 
 /// Resamples tile `id` of the tile directory `dir` and writes TilePath(dir, id, ".surfel"). With a
-/// target (manifest.targetCount), to the count of its share (ReadShare). Errors name the tile.
+/// target (manifest.targetCount), to the count of its share (ReadShare), and then its outcome
+/// (WriteOutcome). Errors name the tile.
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error);
 
 /// With a target: resamples tile `id` at the level and writes its probe (target_share.h).
