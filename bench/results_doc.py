@@ -292,6 +292,29 @@ def scale_table():
                      "B/point beyond the input"], lines) if lines else None
 
 
+def whole_vs_tiled_rows(f, shape):
+    """Rows of a whole-against-tiled table from bench_tile.sh's compare lines, at 5 and 20 million
+    points of `shape` (its tag prefix: "" for the dragon, "drilled-box_")."""
+    rows = []
+    for points in ("5000000", "20000000"):
+        tag = shape + points
+        c, whole, tiled = f"compare_{tag}", f"whole_{tag}", f"tiled_{tag}"
+        if (c, "count_diff_pct") not in f:
+            continue
+        rows.append([f"{int(points):,}", f[(tiled, "tiles")],
+                     f"{int(f[(c, 'count_whole')]):,} / {int(f[(c, 'count_tiled')]):,} "
+                     f"({signed_percent(float(f[(c, 'count_diff_pct')]))})",
+                     ", ".join(signed_percent(float(f[(c, k)])) for k in
+                               ("delta_rms_diff_pct", "delta_max_diff_pct", "l21_own_rms_diff_pct",
+                                "l21_blended_rms_diff_pct")),
+                     signed_percent(float(f[(c, "members_diff_pct")])),
+                     f"{f[(c, 'whole_border_uncovered')]} / {f[(c, 'tiled_border_uncovered')]} of "
+                     f"{int(f[(c, 'tiled_border_points')]):,}",
+                     f"{f[(whole, 'wall_s')]} / {f[(tiled, 'wall_s')]}",
+                     f"{f[(whole, 'peak_mib')]} / {f[(tiled, 'peak_mib')]}"])
+    return rows
+
+
 def tile_results(stage):
     """bench/tile/results/STAGE.txt (bench/tile/bench_tile.sh): its stamp lines and its figures as
     {(name, key): value}, or None when absent."""
@@ -349,34 +372,30 @@ def tiling():
                              f[("dask_2_workers", "largest_tile_peak_mib")] + " (largest tile)"]]),
                   f"Speed-up from one worker to two: {one / two:.2f}. The outputs of one and two workers are "
                   + ("identical." if f.get(("outputs", "identical")) else "NOT identical.")]
+    compare_columns = ["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own, "
+                       "L2,1 blended: tiled − whole", "points represented: tiled − whole",
+                       "uncovered points along tile faces, whole / tiled", "wall s whole / tiled",
+                       "peak MiB whole / tiled"]
     compare = tile_results("compare")
     if compare:
         stamp, f = compare
-        rows = []
-        for points in ("5000000", "20000000"):
-            c, whole, tiled = f"compare_{points}", f"whole_{points}", f"tiled_{points}"
-            if (c, "count_diff_pct") not in f:
-                continue
-            rows.append([f"{int(points):,}", f[(tiled, "tiles")],
-                         f"{int(f[(c, 'count_whole')]):,} / {int(f[(c, 'count_tiled')]):,} "
-                         f"({signed_percent(float(f[(c, 'count_diff_pct')]))})",
-                         ", ".join(signed_percent(float(f[(c, k)])) for k in
-                                   ("delta_rms_diff_pct", "delta_max_diff_pct", "l21_own_rms_diff_pct",
-                                    "l21_blended_rms_diff_pct")),
-                         signed_percent(float(f[(c, "members_diff_pct")])),
-                         f"{f[(c, 'whole_border_uncovered')]} / {f[(c, 'tiled_border_uncovered')]} of "
-                         f"{int(f[(c, 'tiled_border_points')]):,}",
-                         f"{f[(whole, 'wall_s')]} / {f[(tiled, 'wall_s')]}",
-                         f"{f[(whole, 'peak_mib')]} / {f[(tiled, 'peak_mib')]}"])
+        rows = whole_vs_tiled_rows(f, "")
         if rows:
             parts += ["### Tiled against whole", tile_stamp("compare", stamp),
                       "The dragon densified by `gsscale` (random order), level 8, halo 24 sample spacings; "
                       "`gstile all` against `gsresample` on the same input, compared by `gstile_compare` "
                       "(docs/tiling.md, *Checking a tiled run*).",
-                      md_table(["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own, "
-                                "L2,1 blended: tiled − whole", "points represented: tiled − whole",
-                                "uncovered points along tile faces, whole / tiled", "wall s whole / tiled",
-                                "peak MiB whole / tiled"], rows)]
+                      md_table(compare_columns, rows)]
+    flat = tile_results("flat")
+    if flat:
+        stamp, f = flat
+        rows = whole_vs_tiled_rows(f, "drilled-box_")
+        if rows:
+            parts += ["### Flat faces", tile_stamp("flat", stamp),
+                      "The drilled box of `gsscale` (a cube with a cylindrical hole: flat faces, sharp edges), "
+                      "otherwise as above (docs/tiling.md, *Halo width*: where clusters on a flat face start "
+                      "depends on points beyond any halo).",
+                      md_table(compare_columns, rows)]
     target = tile_results("target")
     if target:
         stamp, f = target
@@ -388,12 +407,13 @@ def tiling():
             rows.append([f"{int(count):,}", f"{int(f[(name, 'count_tiled')]):,}"] +
                         [signed_percent(float(f[(name, k)])) for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
                                                                   "delta_p999_diff_pct", "l21_own_rms_diff_pct",
-                                                                  "l21_blended_rms_diff_pct")])
+                                                                  "l21_blended_rms_diff_pct")] +
+                        [f"{f[(f'whole_{name}', 'wall_s')]} / {f[(f'tiled_{name}', 'wall_s')]}"])
         parts += ["### A target count shared over the tiles", tile_stamp("target", stamp),
                   "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, "
                   "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole:",
                   md_table(["target", "surfels tiled", "count", "Δ* RMS", "Δ* max", "Δ* p99.9", "L2,1 own",
-                            "L2,1 blended"], rows)]
+                            "L2,1 blended", "wall s whole / tiled"], rows)]
     if parts:
         parts = ["## Tiled resampling",
                  "`gstile` resamples a scan of any size tile by tile ([docs/tiling.md](tiling.md); the benchmark: "
