@@ -3,6 +3,8 @@
 #   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
 #   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at three target counts, whole vs tiled
+#   bench/tile/bench_tile.sh WORK_DIR flat      # whole vs tiled on flat faces: the drilled box at 5
+#                                               # and 20 million points
 #                                               # (PARTS=n: n x 20 million instead of 10)
 # Inputs: the dragon densified by gsscale (bench/scale); 200 million = ten samplings of 20 million
 # (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
@@ -24,9 +26,10 @@ measure() { # NAME COMMAND...: wall seconds and peak RSS (MiB) of COMMAND into N
   awk '{ split($2, m, "="); printf "%s %s peak_mib=%.0f\n", "'"$1"'", $1, m[2] / 1024 }' "$1.time"
 }
 
-generate() { # POINTS SEED
-  local out=dragon_$1_s$2.ply
-  [ -f "$out" ] || nice "$gsscale" generate --points "$1" --seed "$2" --shape dragon --out "$out" > /dev/null
+generate() { # POINTS SEED [SHAPE]
+  local shape=${3:-dragon}
+  local out=${shape}_$1_s$2.ply
+  [ -f "$out" ] || nice "$gsscale" generate --points "$1" --seed "$2" --shape "$shape" --out "$out" > /dev/null
   echo "$out"
 }
 
@@ -39,14 +42,14 @@ WRAP
   chmod +x capped_gstile
 }
 
-compare() { # POINTS TILE_POINTS
-  local input; input=$(generate "$1" 1)
-  measure "whole_$1" "$bin/tools/gsresample/gsresample" "$input" "whole_$1.surfel"
-  measure "tiled_$1" "$gstile" all "$input" "tiled_$1.surfel" --tile-points "$2" --tile-dir "tiles_$1"
-  echo "tiled_$1 tiles=$(grep -c '^\[run\]' "tiled_$1.log")"
-  nice "$bin/tools/gstile/gstile_compare" "tiles_$1" "whole_$1.surfel" "tiled_$1.surfel" > "compare_$1.txt"
-  sed "s/^/compare_$1 /" "compare_$1.txt"
-  rm -rf "tiles_$1"
+compare() { # POINTS TILE_POINTS [SHAPE]: the dragon's lines tagged POINTS, another shape's SHAPE_POINTS
+  local input tag=${3:+$3_}$1; input=$(generate "$1" 1 "${3:-dragon}")
+  measure "whole_$tag" "$bin/tools/gsresample/gsresample" "$input" "whole_$tag.surfel"
+  measure "tiled_$tag" "$gstile" all "$input" "tiled_$tag.surfel" --tile-points "$2" --tile-dir "tiles_$tag"
+  echo "tiled_$tag tiles=$(grep -c '^\[run\]' "tiled_$tag.log")"
+  nice "$bin/tools/gstile/gstile_compare" "tiles_$tag" "whole_$tag.surfel" "tiled_$tag.surfel" > "compare_$tag.txt"
+  sed "s/^/compare_$tag /" "compare_$tag.txt"
+  rm -rf "tiles_$tag"
 }
 
 target() { # the dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo
@@ -101,7 +104,8 @@ case $stage in
   compare) run() { compare 5000000 1000000; compare 20000000 4000000; } ;;
   big) run() { big; } ;;
   target) run() { target; } ;;
-  *) echo "usage: $0 WORK_DIR compare|big|target" >&2; exit 2 ;;
+  flat) run() { compare 5000000 1000000 drilled-box; compare 20000000 4000000 drilled-box; } ;;
+  *) echo "usage: $0 WORK_DIR compare|big|target|flat" >&2; exit 2 ;;
 esac
 mkdir -p "$here/bench/tile/results"
 { stamp; run; echo "# load average at end $(cut -d' ' -f1-3 /proc/loadavg)"; } | tee "$stage.txt"
