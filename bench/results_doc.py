@@ -310,9 +310,17 @@ def whole_vs_tiled_rows(f, shape):
                      signed_percent(float(f[(c, "members_diff_pct")])),
                      f"{f[(c, 'whole_border_uncovered')]} / {f[(c, 'tiled_border_uncovered')]} of "
                      f"{int(f[(c, 'tiled_border_points')]):,}",
+                     rescued_cell(f, c),
                      f"{f[(whole, 'wall_s')]} / {f[(tiled, 'wall_s')]}",
                      f"{f[(whole, 'peak_mib')]} / {f[(tiled, 'peak_mib')]}"])
     return rows
+
+
+def rescued_cell(f, name):
+    """Surfels the merge kept for border points no tile kept nor covered, and those points."""
+    if (name, "tiled_rescued_surfels") not in f:
+        return "–"
+    return f"{int(f[(name, 'tiled_rescued_surfels')]):,} for {int(f[(name, 'tiled_orphans_uncovered')]):,}"
 
 
 def tile_results(stage):
@@ -374,7 +382,8 @@ def tiling():
                   + ("identical." if f.get(("outputs", "identical")) else "NOT identical.")]
     compare_columns = ["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own, "
                        "L2,1 blended: tiled − whole", "points represented: tiled − whole",
-                       "uncovered points along tile faces, whole / tiled", "wall s whole / tiled",
+                       "uncovered points along tile faces, whole / tiled",
+                       "surfels kept for border points no tile kept nor covered", "wall s whole / tiled",
                        "peak MiB whole / tiled"]
     compare = tile_results("compare")
     if compare:
@@ -396,6 +405,28 @@ def tiling():
                       "otherwise as above (docs/tiling.md, *Halo width*: where clusters on a flat face start "
                       "depends on points beyond any halo).",
                       md_table(compare_columns, rows)]
+    halo = tile_results("halo")
+    if halo:
+        stamp, f = halo
+        rows = []
+        for width in ("1", "2", "4", "6", "8", "12", "16", "24", "32"):
+            name = f"halo_{width}"
+            if (name, "count_diff_pct") not in f:
+                continue
+            rows.append([width, f"{int(f[(name, 'count_tiled')]):,}", f"{round(float(f[(name, 'members_tiled')])):,}",
+                         signed_percent(float(f[(name, "delta_rms_diff_pct")])), f[(name, "tiled_border_uncovered")],
+                         rescued_cell(f, name)])
+        if rows:
+            name = "halo_24" if ("halo_24", "count_whole") in f else f"halo_{rows[0][0]}"
+            parts += ["### Halo width", tile_stamp("halo", stamp),
+                      f"The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, level 8, "
+                      f"at each halo width in sample spacings; the whole run: {int(f[(name, 'count_whole')]):,} surfels "
+                      f"representing {round(float(f[(name, 'members_whole')])):,} points, "
+                      f"{f[(name, 'whole_border_uncovered')]} points along the tile faces uncovered "
+                      "(docs/tiling.md, *Halo width*).",
+                      md_table(["halo (spacings)", "surfels", "points represented", "Δ* RMS: tiled − whole",
+                                "uncovered points along tile faces",
+                                "surfels kept for border points no tile kept nor covered"], rows)]
     target = tile_results("target")
     if target:
         stamp, f = target

@@ -5,6 +5,7 @@
 #   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at three target counts, whole vs tiled
 #   bench/tile/bench_tile.sh WORK_DIR flat      # whole vs tiled on flat faces: the drilled box at 5
 #                                               # and 20 million points
+#   bench/tile/bench_tile.sh WORK_DIR halo      # the dragon in 13 tiles at halo widths 1-32 spacings
 #                                               # (PARTS=n: n x 20 million instead of 10)
 # Inputs: the dragon densified by gsscale (bench/scale); 200 million = ten samplings of 20 million
 # (seeds 1-10) concatenated. Every tile's run goes through a wrapper that caps its address space
@@ -65,6 +66,18 @@ target() { # the dragon (437,645 points) in 13 tiles of at most 150,000 points w
   done
 }
 
+halo() { # the dragon in 13 tiles of at most 150,000 points with their halo, at each halo width
+  local dragon=$here/../shared/data/dragon.ply width
+  nice "$bin/tools/gsresample/gsresample" "$dragon" whole_dragon.surfel > /dev/null
+  for width in 1 2 4 6 8 12 16 24 32; do
+    nice "$gstile" all "$dragon" "halo_$width.surfel" --tile-points 150000 --halo-spacings "$width" \
+      --tile-dir "tiles_halo_$width" > /dev/null
+    nice "$bin/tools/gstile/gstile_compare" "tiles_halo_$width" whole_dragon.surfel "halo_$width.surfel" |
+      sed "s/^/halo_$width /"
+    rm -rf "tiles_halo_$width"
+  done
+}
+
 big() {
   local count=${PARTS:-10} parts=() input
   if [ "$count" -gt 1 ]; then
@@ -105,7 +118,8 @@ case $stage in
   big) run() { big; } ;;
   target) run() { target; } ;;
   flat) run() { compare 5000000 1000000 drilled-box; compare 20000000 4000000 drilled-box; } ;;
-  *) echo "usage: $0 WORK_DIR compare|big|target|flat" >&2; exit 2 ;;
+  halo) run() { halo; } ;;
+  *) echo "usage: $0 WORK_DIR compare|big|target|flat|halo" >&2; exit 2 ;;
 esac
 mkdir -p "$here/bench/tile/results"
 { stamp; run; echo "# load average at end $(cut -d' ' -f1-3 /proc/loadavg)"; } | tee "$stage.txt"

@@ -3,12 +3,16 @@
 // with a target), and what a damaged tile directory gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <set>
 
 #include <tools/gsresample/ply_input.h>
+#include <tools/gstile/border_points.h>
 #include <tools/gstile/merge.h>
 #include <tools/gstile/split.h>
 #include <tools/gstile/target_share.h>
@@ -68,6 +72,60 @@ TEST(Ownership, TheTileOfTheSmallestInputIndexKeepsTheCluster)
     EXPECT_EQ(owned, (std::vector<bool>{true, false, false, false}));
 }
 
+TEST(BorderPoints, ATileRecordsTheHaloPointsItTakesAndTheCorePointsItLeaves)
+{
+    vcg::gaussphere::ResamplingResult result;
+    result.surfels.resize(4);
+    // As in Ownership above: surfel 0 kept, 1 left (core 7 with halo 3), 2 and 3 left (halo only).
+    const std::vector<std::uint64_t> indices = {40, 12, 7, 3, 50, 9};
+    std::vector<std::array<float, 3>> positions;
+    for (int v = 0; v < 6; ++v) positions.push_back({{float(v), 0, 0}});
+    result.representative = {0, 0, 1, 1, 2, 3};
+    std::vector<bool> owned = {true, false, false, false};
+    std::vector<int> spares;
+    TileBorder border = BorderOf(result, indices, positions, 3, owned, spares);
+    EXPECT_TRUE(border.takenOver.empty()) << "no kept surfel holds a halo point";
+    ASSERT_EQ(spares, std::vector<int>{1}) << "only surfel 1 holds a core point among those left";
+    ASSERT_EQ(border.leftPoints.size(), 1u);
+    ASSERT_EQ(border.leftPoints[0].size(), 1u);
+    EXPECT_EQ(border.leftPoints[0][0].index, 7u);
+    EXPECT_EQ(border.leftPoints[0][0].position[0], 2.0f);
+    // Surfel 2 kept instead: it takes over halo point 50.
+    owned = {true, false, true, false};
+    border = BorderOf(result, indices, positions, 3, owned, spares);
+    EXPECT_EQ(border.takenOver, std::vector<std::uint64_t>{50});
+
+    const std::string dir = ::testing::TempDir() + "gstile_border_record";
+    ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+    border.leftPoints.push_back({LeftPoint(), LeftPoint()});
+    std::string error;
+    ASSERT_TRUE(WriteBorder(dir, 5, border, error)) << error;
+    TileBorder read;
+    ASSERT_TRUE(ReadBorder(dir, 5, read, error)) << error;
+    EXPECT_EQ(read.takenOver, border.takenOver);
+    ASSERT_EQ(read.leftPoints.size(), 2u);
+    EXPECT_EQ(read.leftPoints[0][0].index, 7u);
+    EXPECT_EQ(read.leftPoints[1].size(), 2u);
+    // Cut short: refused, the tile named.
+    std::ifstream in(TilePath(dir, 5, ".border"), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(TilePath(dir, 5, ".border"), std::ios::binary) << bytes.substr(0, bytes.size() - 4);
+    EXPECT_FALSE(ReadBorder(dir, 5, read, error));
+    EXPECT_NE(error.find("tile 5:"), std::string::npos) << error;
+}
+
+TEST(BorderPoints, AnEllipseCoversWhatLiesInsideItAndNearItsPlane)
+{
+    surfel_io::SurfelRecord s{};
+    s.normal = {{0, 0, 1}};
+    s.majorAxis = {{2, 0, 0}};
+    s.minorAxis = {{0, 1, 0}};
+    const float inside[3] = {1.5f, 0.5f, 1.9f}, outside[3] = {1.5f, 0.8f, 0}, above[3] = {0, 0, 2.1f};
+    EXPECT_TRUE(EllipseCovers(s, inside));
+    EXPECT_FALSE(EllipseCovers(s, outside)) << "(1.5/2)^2 + 0.8^2 > 1";
+    EXPECT_FALSE(EllipseCovers(s, above)) << "farther off the plane than the major semi-axis";
+}
+
 /// The bunny split into small tiles in a fresh directory.
 class BunnyTiles : public ::testing::Test
 {
@@ -109,6 +167,58 @@ TEST_F(BunnyTiles, TiledCountAndRepresentedPointsMatchTheWholeRun)
     std::uint64_t core = 0;
     for (const TileEntry &t : manifest_.tiles) core += t.corePoints;
     EXPECT_EQ(core, manifest_.points) << "every point in exactly one core";
+}
+
+TEST_F(BunnyTiles, TheMergeKeepsASurfelForEveryBorderPointNoTileKeepsNorCovers)
+{
+    // Halos of 2 sample spacings: the tiles cut many border clusters differently.
+    SplitOptions options;
+    options.tilePoints = 20000;
+    options.haloSpacings = 2;
+    std::string error;
+    dir_ += "_narrow";
+    ASSERT_TRUE(Split(kBunny, dir_, options, manifest_, [](const std::string &) {}, error)) << error;
+    RunAll();
+    Rescues rescues;
+    ASSERT_TRUE(FindRescues(dir_, manifest_, rescues, error)) << error;
+    EXPECT_GT(rescues.orphans, 0u);
+    EXPECT_GT(rescues.uncovered, 0u);
+    EXPECT_LT(rescues.uncovered, rescues.orphans) << "most orphans lie under a neighbour's ellipse";
+    EXPECT_GT(rescues.surfels, 0u);
+    EXPECT_LE(rescues.surfels, rescues.uncovered);
+    MergeFigures figures;
+    ASSERT_TRUE(Merge(dir_, manifest_, dir_ + "/merged.surfel", figures, error)) << error;
+    EXPECT_EQ(figures.rescued, rescues.surfels);
+    // Every orphan lies under an ellipse of the merged output.
+    std::vector<surfel_io::SurfelRecord> merged;
+    ASSERT_TRUE(surfel_io::readSurfelFile(dir_ + "/merged.surfel", merged, error)) << error;
+    std::vector<std::uint64_t> takenOver;
+    TileBorder border;
+    for (const TileEntry &t : manifest_.tiles) {
+        ASSERT_TRUE(ReadBorder(dir_, t.id, border, error)) << error;
+        takenOver.insert(takenOver.end(), border.takenOver.begin(), border.takenOver.end());
+    }
+    std::sort(takenOver.begin(), takenOver.end());
+    std::uint64_t orphans = 0, uncovered = 0;
+    for (const TileEntry &t : manifest_.tiles) {
+        ASSERT_TRUE(ReadBorder(dir_, t.id, border, error)) << error;
+        for (const std::vector<LeftPoint> &left : border.leftPoints)
+            for (const LeftPoint &p : left) {
+                if (std::binary_search(takenOver.begin(), takenOver.end(), p.index)) continue;
+                ++orphans;
+                uncovered += std::none_of(merged.begin(), merged.end(), [&p](const surfel_io::SurfelRecord &s) {
+                    return EllipseCovers(s, p.position);
+                });
+            }
+    }
+    EXPECT_EQ(orphans, rescues.orphans);
+    EXPECT_EQ(uncovered, 0u);
+
+    // A damaged border record stops the merge with its tile named.
+    const int id = manifest_.tiles[1].id;
+    std::ofstream(TilePath(dir_, id, ".border"), std::ios::binary) << "gsborde1";
+    EXPECT_FALSE(Merge(dir_, manifest_, dir_ + "/merged2.surfel", figures, error));
+    EXPECT_NE(error.find("tile " + std::to_string(id) + ":"), std::string::npos) << error;
 }
 
 TEST_F(BunnyTiles, ACorruptOrTruncatedTileFileIsRefusedWithTheTileNamed)

@@ -176,10 +176,13 @@ int MergeTiles(const std::string &dir, const Manifest &manifest, const std::stri
     MergeFigures figures;
     std::string error;
     if (!Merge(dir, manifest, output, figures, error)) return Fail(error);
-    char line[200];
-    std::snprintf(line, sizeof line, "[merge] %llu surfels (%.2f%% of %llu points) representing %llu points into %s",
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "[merge] %llu surfels (%.2f%% of %llu points; %llu kept for %llu border points no tile kept nor covered) "
+                  "representing %llu points into %s",
                   (unsigned long long)figures.surfels, 100.0 * figures.surfels / double(manifest.points),
-                  (unsigned long long)manifest.points, (unsigned long long)figures.members, output.c_str());
+                  (unsigned long long)manifest.points, (unsigned long long)figures.rescued,
+                  (unsigned long long)figures.orphans, (unsigned long long)figures.members, output.c_str());
     PrintLine(line);
     return 0;
 }

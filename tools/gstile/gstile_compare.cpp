@@ -25,6 +25,7 @@
 #include <vcg_ext/surfel_error/surfel_error.h>
 #include <tools/gsresample/ply_input.h>
 
+#include "border_points.h"
 #include "manifest.h"
 #include "point_tree.h"
 #include "tile_files.h"
@@ -108,15 +109,6 @@ void PrintNearestSpacing(const char *name, const Output &out)
                 Percentile(across, 0.05), name, across.size());
 }
 
-bool Covers(const SurfelRecord &s, const vcg::Point3f &q)
-{
-    const vcg::Point3f d = q - P(s.position), a = P(s.majorAxis), b = P(s.minorAxis);
-    const double la = a.Norm(), lb = b.Norm();
-    if (!(la > 0 && lb > 0)) return false;
-    const double u = (d * a) / (la * la), v = (d * b) / (lb * lb);
-    return u * u + v * v <= 1 && std::abs(d * P(s.normal)) <= la;
-}
-
 /// Distance from `p` to the nearest face its core box shares with another tile.
 double DistanceToInnerFace(const TileGrid &grid, const float p[3])
 {
@@ -146,7 +138,7 @@ void PrintBorderHoles(const char *name, const Output &out, const vcg::gaussphere
         float squared[16];
         const std::size_t found = tree.knnSearch(p, 16, index, squared);
         bool covered = false;
-        for (std::size_t k = 0; k < found && !covered; ++k) covered = Covers(out.surfels[index[k]], v.cP());
+        for (std::size_t k = 0; k < found && !covered; ++k) covered = EllipseCovers(out.surfels[index[k]], p);
         holes += !covered;
     }
     std::printf("%s_border_points=%zu\n%s_border_uncovered=%zu\n", name, border, name, holes);
@@ -164,12 +156,17 @@ Output ReadWhole(const std::string &path, const Manifest &manifest)
 Output ReadTiles(const std::string &dir, const Manifest &manifest)
 {
     Output out;
-    for (const TileEntry &t : manifest.tiles) {
+    Rescues rescues;
+    std::string error;
+    Require(FindRescues(dir, manifest, rescues, error), error);
+    std::printf("tiled_rescued_surfels=%llu\ntiled_orphan_points=%llu\ntiled_orphans_uncovered=%llu\n",
+                (unsigned long long)rescues.surfels, (unsigned long long)rescues.orphans,
+                (unsigned long long)rescues.uncovered);
+    for (std::size_t t = 0; t < manifest.tiles.size(); ++t) {
         std::vector<SurfelRecord> records;
-        std::string error;
-        Require(surfel_io::readSurfelFile(TilePath(dir, t.id, ".surfel"), records, error), error);
+        Require(ReadTileOutput(dir, manifest.tiles[t].id, rescues.spares[t], records, error), error);
         out.surfels.insert(out.surfels.end(), records.begin(), records.end());
-        out.tile.insert(out.tile.end(), records.size(), t.id);
+        out.tile.insert(out.tile.end(), records.size(), manifest.tiles[t].id);
     }
     return out;
 }

@@ -6,6 +6,7 @@
 
 #include <io_surfel/surfel_file.h>
 
+#include "border_points.h"
 #include "tile_files.h"
 
 namespace gstile {
@@ -61,20 +62,18 @@ bool WritePlyRecords(std::ostream &out, const std::vector<surfel_io::SurfelRecor
     return bool(out);
 }
 
-bool AppendTiles(const std::string &dir, const Manifest &manifest, bool surfelFormat, std::ostream &out,
-                 MergeFigures &figures, std::string &error)
+bool AppendTiles(const std::string &dir, const Manifest &manifest, const Rescues &rescues, bool surfelFormat,
+                 std::ostream &out, MergeFigures &figures, std::string &error)
 {
     std::vector<surfel_io::SurfelRecord> records;
-    for (const TileEntry &tile : manifest.tiles) {
-        std::string reason;
-        if (!surfel_io::readSurfelFile(TilePath(dir, tile.id, ".surfel"), records, reason)) {
-            error = TileError(tile.id, reason);
-            return false;
-        }
+    for (std::size_t t = 0; t < manifest.tiles.size(); ++t) {
+        const int id = manifest.tiles[t].id;
+        if (!ReadTileOutput(dir, id, rescues.spares[t], records, error)) return false;
         for (const surfel_io::SurfelRecord &r : records) figures.members += std::uint64_t(std::llround(r.quality));
+        std::string reason;
         const bool written = surfelFormat ? surfel_io::writeSurfelRecords(out, records, reason) : WritePlyRecords(out, records);
         if (!written) {
-            error = "write error after tile " + std::to_string(tile.id) + (reason.empty() ? "" : ": " + reason);
+            error = "write error after tile " + std::to_string(id) + (reason.empty() ? "" : ": " + reason);
             return false;
         }
     }
@@ -87,12 +86,16 @@ bool Merge(const std::string &dir, const Manifest &manifest, const std::string &
            std::string &error)
 {
     figures = MergeFigures();
-    if (!CountSurfels(dir, manifest, figures.surfels, error)) return false;
+    Rescues rescues;
+    if (!CountSurfels(dir, manifest, figures.surfels, error) || !FindRescues(dir, manifest, rescues, error)) return false;
+    figures.surfels += rescues.surfels;
+    figures.rescued = rescues.surfels;
+    figures.orphans = rescues.uncovered;
     const bool surfelFormat = EndsWith(output, ".surfel");
     return WriteAtomically(output, [&](std::ostream &out, std::string &reason) {
         if (surfelFormat) surfel_io::writeSurfelHeader(out, figures.surfels);
         else WritePlyHeader(out, figures.surfels);
-        return AppendTiles(dir, manifest, surfelFormat, out, figures, reason);
+        return AppendTiles(dir, manifest, rescues, surfelFormat, out, figures, reason);
     }, error);
 }
 

@@ -46,15 +46,21 @@ double FillMesh(const std::vector<TilePoint> &points, OrientedPointMesh &mesh)
     return ResamplerDiagonal(lo, hi);
 }
 
-/// The tile's points into `mesh` (their input indices into `indices`) and its parameters.
+/// The tile's points into `mesh` (their input indices into `indices`, their positions into
+/// `positions`) and its parameters.
 bool LoadTile(const std::string &dir, const TileEntry &tile, OrientedPointMesh &mesh, std::vector<std::uint64_t> &indices,
-              ResamplingParams &param, const Manifest &manifest, std::string &error)
+              std::vector<std::array<float, 3>> &positions, ResamplingParams &param, const Manifest &manifest,
+              std::string &error)
 {
     std::vector<TilePoint> points;
     if (!LoadTilePoints(dir, tile, points, error)) return false;
     const double diagonal = FillMesh(points, mesh);
     indices.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) indices[i] = points[i].index;
+    positions.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        indices[i] = points[i].index;
+        positions[i] = {{points[i].position[0], points[i].position[1], points[i].position[2]}};
+    }
     return TileParams(manifest, diagonal, param, error);
 }
 
@@ -85,12 +91,42 @@ std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector
     return owned;
 }
 
+TileBorder BorderOf(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
+                    const std::vector<std::array<float, 3>> &positions, std::uint64_t corePoints,
+                    const std::vector<bool> &owned, std::vector<int> &spares)
+{
+    TileBorder border;
+    std::vector<int> spareOf(result.surfels.size(), -1); // position in `spares`
+    spares.clear();
+    for (std::size_t v = 0; v < indices.size(); ++v) {
+        const int s = result.representative[v];
+        if (s < 0) continue;
+        if (v >= corePoints) {
+            if (owned[std::size_t(s)]) border.takenOver.push_back(indices[v]);
+            continue;
+        }
+        if (owned[std::size_t(s)]) continue;
+        if (spareOf[std::size_t(s)] < 0) {
+            spareOf[std::size_t(s)] = int(spares.size());
+            spares.push_back(s);
+            border.leftPoints.emplace_back();
+        }
+        LeftPoint left;
+        left.index = indices[v];
+        for (int k = 0; k < 3; ++k) left.position[k] = positions[v][k];
+        border.leftPoints[std::size_t(spareOf[std::size_t(s)])].push_back(left);
+    }
+    std::sort(border.takenOver.begin(), border.takenOver.end());
+    return border;
+}
+
 namespace {
 
 /// One tile resampled: its points' input indices, the result and which surfels it owns.
 struct ResampledTile
 {
     std::vector<std::uint64_t> indices;
+    std::vector<std::array<float, 3>> positions;
     ResamplingResult result;
     std::vector<bool> owned;
 };
@@ -101,7 +137,7 @@ bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEn
 {
     OrientedPointMesh mesh;
     ResamplingParams param;
-    if (!LoadTile(dir, tile, mesh, out.indices, param, manifest, error)) return false;
+    if (!LoadTile(dir, tile, mesh, out.indices, out.positions, param, manifest, error)) return false;
     param.targetCount = int(targetCount);
     try {
         out.result = ResamplePointSet(mesh, param);
@@ -158,13 +194,18 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         error = name + ": " + error;
         return false;
     }
-    std::vector<Surfel> kept;
+    std::vector<Surfel> kept, spare;
     for (std::size_t s = 0; s < tile.owned.size(); ++s) {
         if (!tile.owned[s]) continue;
         kept.push_back(tile.result.surfels[s]);
         figures.ownedMembers += std::uint64_t(tile.result.surfels[s].memberCount);
     }
-    if (!WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
+    std::vector<int> spares;
+    const TileBorder border = run ? BorderOf(tile.result, tile.indices, tile.positions, entry->corePoints, tile.owned, spares) : TileBorder();
+    for (const int s : spares) spare.push_back(tile.result.surfels[std::size_t(s)]);
+    // The result last: it marks the tile done (merge.h).
+    if (!WriteBorder(dir, id, border, error) || !WriteResult(TilePath(dir, id, ".spare"), spare, error) ||
+        !WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
         (manifest.targetCount > 0 && !WriteOutcome(dir, id, {share.target, kept.size()}, error))) {
         error = name + ": " + error;
         return false;

@@ -8,12 +8,14 @@
 #ifndef GSTILE_TILE_RUN_H
 #define GSTILE_TILE_RUN_H
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <vcg_ext/gaussphere/resampling.h>
 
+#include "border_points.h"
 #include "manifest.h"
 #include "target_share.h"
 #include "tile_files.h"
@@ -36,7 +38,15 @@ struct TileRunFigures
 std::vector<bool> OwnedSurfels(const vcg::gaussphere::ResamplingResult &result,
                                const std::vector<std::uint64_t> &indices, std::uint64_t corePoints);
 
-/// Resamples tile `id` of the tile directory `dir` and writes TilePath(dir, id, ".surfel"). With a
+/// The border record of a tile's run (border_points.h) from its points' input indices and
+/// positions (core points first); `spares` receives the surfels it leaves to other tiles that hold
+/// some of its core points, in the order of border.leftPoints.
+TileBorder BorderOf(const vcg::gaussphere::ResamplingResult &result, const std::vector<std::uint64_t> &indices,
+                    const std::vector<std::array<float, 3>> &positions, std::uint64_t corePoints,
+                    const std::vector<bool> &owned, std::vector<int> &spares);
+
+/// Resamples tile `id` of the tile directory `dir` and writes its border record and spare surfels
+/// (border_points.h), then TilePath(dir, id, ".surfel"). With a
 /// target (manifest.targetCount), to the count of its share (ReadShare), and then its outcome
 /// (WriteOutcome). Errors name the tile.
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error);
