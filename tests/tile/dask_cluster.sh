@@ -35,7 +35,7 @@ for _ in $(seq 60); do grep -q "Registered to" worker1.log worker2.log 2>/dev/nu
   [ "$(grep -l 'Registered to' worker1.log worker2.log | wc -l)" = 2 ] && break; sleep 0.5; done
 
 run_driver() { # OUTPUT: the driver against the scheduler, each tile's result removed first
-  rm -f tiles/tile_*.surfel
+  rm -f tiles/tile_*.surfel tiles/tile_*.border tiles/tile_*.spare
   /usr/bin/python3 "$DRIVER" tiles "$1" --scheduler "$scheduler" --gstile "$PWD/slow_gstile"
 }
 failures=0
@@ -52,10 +52,11 @@ while "$GSTILE" adjust target_tiles > /dev/null && [ -n "$("$GSTILE" tiles targe
   for id in $("$GSTILE" tiles target_tiles --pending); do "$GSTILE" run target_tiles "$id" > /dev/null; done
 done
 "$GSTILE" merge target_tiles target_sequential.surfel > /dev/null
-rm -f target_tiles/tile_*.surfel target_tiles/tile_*.probe target_tiles/tile_*.kept target_tiles/shares.json
+rm -f target_tiles/tile_*.{surfel,border,spare,probe,kept} target_tiles/shares.json
 /usr/bin/python3 "$DRIVER" target_tiles target_dask.surfel --scheduler "$scheduler" --gstile "$PWD/slow_gstile" > target.log
 check "a target: the probe round, then identical to the sequential run" cmp target_sequential.surfel target_dask.surfel
 check "a target: every tile probed" grep -q "probe $("$GSTILE" tiles target_tiles | wc -l)/.* done |" target.log
+check "a target: tiles that missed their share ran again" grep -q "^\[adjust\] .* [1-9][0-9]* tile(s) to run again" target.log
 
 run_driver killed.surfel > killed.log &
 driver=$!

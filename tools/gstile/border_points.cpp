@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -54,11 +55,12 @@ public:
         std::uint64_t count = 0;
         if (!Value(count) || count > (bytes_.size() - at_) / sizeof(Record)) return false;
         list.resize(count);
-        std::memcpy(static_cast<void *>(list.data()), bytes_.data() + at_, count * sizeof(Record));
+        if (count > 0) std::memcpy(static_cast<void *>(list.data()), bytes_.data() + at_, count * sizeof(Record));
         at_ += count * sizeof(Record);
         return true;
     }
     bool AtEnd() const { return at_ == bytes_.size(); }
+    std::uint64_t ValuesLeft() const { return (bytes_.size() - at_) / sizeof(std::uint64_t); }
 
 private:
     std::vector<char> bytes_;
@@ -83,20 +85,22 @@ bool ReadBorder(const std::string &dir, int id, TileBorder &border, std::string 
     const std::string path = TilePath(dir, id, ".border");
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        error = "tile " + std::to_string(id) + ": cannot open " + path + " (run `gstile run` on it again)";
+        error = RerunError(id, "cannot open " + path);
         return false;
     }
     BorderReader reader{std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>())};
     std::uint64_t spares = 0;
-    bool ok = reader.Magic() && reader.List(border.takenOver) && reader.Value(spares) &&
-              spares <= std::uint64_t(1) << 40;
+    // Each spare surfel takes at least its count's 8 bytes.
+    bool ok = reader.Magic() && reader.List(border.takenOver) && reader.Value(spares) && spares <= reader.ValuesLeft();
     border.leftPoints.clear();
     for (std::uint64_t s = 0; ok && s < spares; ++s) {
         border.leftPoints.emplace_back();
         ok = reader.List(border.leftPoints.back());
+        for (const LeftPoint &p : border.leftPoints.back())
+            ok = ok && std::isfinite(p.position[0]) && std::isfinite(p.position[1]) && std::isfinite(p.position[2]);
     }
     if (!ok || !reader.AtEnd() || !std::is_sorted(border.takenOver.begin(), border.takenOver.end())) {
-        error = "tile " + std::to_string(id) + ": " + path + " is damaged (run `gstile run` on it again)";
+        error = RerunError(id, path + " is damaged");
         return false;
     }
     return true;
@@ -162,7 +166,7 @@ bool MarkCovered(const std::string &dir, const Manifest &manifest, const Orphans
     for (const TileEntry &tile : manifest.tiles) {
         std::string reason;
         if (!surfel_io::readSurfelFile(TilePath(dir, tile.id, ".surfel"), records, reason)) {
-            error = "tile " + std::to_string(tile.id) + ": " + reason + " (run `gstile run` on it again)";
+            error = RerunError(tile.id, reason);
             return false;
         }
         for (const surfel_io::SurfelRecord &s : records) {
@@ -206,7 +210,7 @@ bool ReadTileOutput(const std::string &dir, int id, const std::vector<std::size_
                     std::vector<surfel_io::SurfelRecord> &records, std::string &error)
 {
     const auto fail = [&](const std::string &reason) {
-        error = "tile " + std::to_string(id) + ": " + reason + " (run `gstile run` on it again)";
+        error = RerunError(id, reason);
         return false;
     };
     std::string reason;

@@ -11,8 +11,9 @@
 //    same order).
 // The merge finds the orphans (left points no tile took over), checks them against the ellipses of
 // every kept surfel, and keeps after all ("rescues") each spare surfel holding an orphan that no
-// ellipse covers: the output then covers every input point along the faces, at the cost of a few
-// surfels doubled there. Memory: the taken-over indices and the orphans, not the tiles' surfels.
+// ellipse covers: each such point is represented again, by the surfel of its own tile's cluster,
+// at the cost of a few surfels doubled along the faces. Memory: the taken-over indices and the
+// orphans, not the tiles' surfels.
 #ifndef GSTILE_BORDER_POINTS_H
 #define GSTILE_BORDER_POINTS_H
 

@@ -182,7 +182,7 @@ int MergeTiles(const std::string &dir, const Manifest &manifest, const std::stri
                   "representing %llu points into %s",
                   (unsigned long long)figures.surfels, 100.0 * figures.surfels / double(manifest.points),
                   (unsigned long long)manifest.points, (unsigned long long)figures.rescued,
-                  (unsigned long long)figures.orphans, (unsigned long long)figures.members, output.c_str());
+                  (unsigned long long)figures.uncovered, (unsigned long long)figures.members, output.c_str());
     PrintLine(line);
     return 0;
 }

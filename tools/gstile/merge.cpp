@@ -7,6 +7,7 @@
 #include <io_surfel/surfel_file.h>
 
 #include "border_points.h"
+#include "target_share.h"
 #include "tile_files.h"
 
 namespace gstile {
@@ -18,11 +19,6 @@ bool EndsWith(const std::string &text, const std::string &suffix)
     return text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-std::string TileError(int id, const std::string &reason)
-{
-    return "tile " + std::to_string(id) + ": " + reason + " (run `gstile run` on it again)";
-}
-
 /// The surfels of all results, each checked complete first.
 bool CountSurfels(const std::string &dir, const Manifest &manifest, std::uint64_t &total, std::string &error)
 {
@@ -31,7 +27,7 @@ bool CountSurfels(const std::string &dir, const Manifest &manifest, std::uint64_
         std::uint64_t count = 0;
         std::string reason;
         if (!surfel_io::readSurfelCount(TilePath(dir, tile.id, ".surfel"), count, reason)) {
-            error = TileError(tile.id, "no complete result: " + reason);
+            error = RerunError(tile.id, "no complete result: " + reason);
             return false;
         }
         total += count;
@@ -86,11 +82,20 @@ bool Merge(const std::string &dir, const Manifest &manifest, const std::string &
            std::string &error)
 {
     figures = MergeFigures();
+    std::vector<int> pending;
+    if (manifest.targetCount > 0) {
+        if (!PendingTiles(dir, manifest, pending, error)) return false;
+        if (!pending.empty()) {
+            error = "tile " + std::to_string(pending.front()) + " has not run at its share's count (gstile adjust, " +
+                    "then gstile run on the tiles of gstile tiles --pending)";
+            return false;
+        }
+    }
     Rescues rescues;
     if (!CountSurfels(dir, manifest, figures.surfels, error) || !FindRescues(dir, manifest, rescues, error)) return false;
     figures.surfels += rescues.surfels;
     figures.rescued = rescues.surfels;
-    figures.orphans = rescues.uncovered;
+    figures.uncovered = rescues.uncovered;
     const bool surfelFormat = EndsWith(output, ".surfel");
     return WriteAtomically(output, [&](std::ostream &out, std::string &reason) {
         if (surfelFormat) surfel_io::writeSurfelHeader(out, figures.surfels);

@@ -1,4 +1,5 @@
-// A nanoflann kd-tree over a vector of float points, for the spacing estimate and gstile_compare.
+// A nanoflann kd-tree over a vector of float points: the spacing estimate, the border points' cover
+// check and gstile_compare.
 #ifndef GSTILE_POINT_TREE_H
 #define GSTILE_POINT_TREE_H
 

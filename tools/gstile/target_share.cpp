@@ -95,7 +95,7 @@ bool ReadShareList(const std::string &dir, std::vector<TileShare> &shares, std::
             share.id = t.at("id").get<int>();
             share.owned = t.at("owned").get<std::uint64_t>();
             share.target = t.at("target").get<std::uint64_t>();
-            for (const json &trial : t.at("tried"))
+            for (const json &trial : t.value("tried", json::array()))
                 share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
             shares.push_back(share);
         }
@@ -178,7 +178,7 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
     for (const TileTrial &t : share.tried) {
         if (t.owned == share.owned) { // runs are deterministic: that count again
             share.target = t.target;
-            return true;
+            return share.target != outcome.target;
         }
         if (t.owned < share.owned && (low == nullptr || t.target > low->target)) low = &t;
         if (t.owned > share.owned && (high == nullptr || t.target < high->target)) high = &t;
@@ -232,7 +232,7 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
     if (manifest.targetCount > 0 && !ReadShareList(dir, shares, error)) return false;
     pending.clear();
     for (const TileEntry &tile : manifest.tiles) {
-        bool done = bool(std::ifstream(TilePath(dir, tile.id, ".surfel")));
+        bool done = std::ifstream(TilePath(dir, tile.id, ".surfel")) && std::ifstream(TilePath(dir, tile.id, ".border"));
         if (done && manifest.targetCount > 0) {
             const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
             TileOutcome outcome;

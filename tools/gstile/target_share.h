@@ -88,7 +88,8 @@ struct AdjustFigures
 /// and writes SharesPath(dir). An error names a tile that has not run at its share's count.
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error);
 
-/// The tiles whose result is missing or was run at another count than their share's.
+/// The tiles whose result or border record is missing, or whose run was at another count than
+/// their share's.
 bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error);
 
 } // namespace gstile

@@ -23,6 +23,11 @@ std::string Checksum::Hex() const
     return text;
 }
 
+std::string RerunError(int id, const std::string &reason)
+{
+    return "tile " + std::to_string(id) + ": " + reason + " (run `gstile run` on it again)";
+}
+
 std::string TilePath(const std::string &dir, int id, const char *suffix)
 {
     char name[32];

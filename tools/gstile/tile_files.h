@@ -40,6 +40,9 @@ private:
 std::string TilePath(const std::string &dir, int id, const char *suffix);
 std::string ManifestPath(const std::string &dir);
 
+/// "tile `id`: `reason` (run `gstile run` on it again)": a tile's file missing or damaged.
+std::string RerunError(int id, const std::string &reason);
+
 /// Reads the records of `path`, which must hold exactly `count` of them with checksum
 /// `checksumHex`; otherwise false with a reason naming the file.
 bool ReadTilePoints(const std::string &path, std::uint64_t count, const std::string &checksumHex,

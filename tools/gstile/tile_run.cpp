@@ -46,21 +46,15 @@ double FillMesh(const std::vector<TilePoint> &points, OrientedPointMesh &mesh)
     return ResamplerDiagonal(lo, hi);
 }
 
-/// The tile's points into `mesh` (their input indices into `indices`, their positions into
-/// `positions`) and its parameters.
+/// The tile's points into `mesh` (their input indices into `indices`) and its parameters.
 bool LoadTile(const std::string &dir, const TileEntry &tile, OrientedPointMesh &mesh, std::vector<std::uint64_t> &indices,
-              std::vector<std::array<float, 3>> &positions, ResamplingParams &param, const Manifest &manifest,
-              std::string &error)
+              ResamplingParams &param, const Manifest &manifest, std::string &error)
 {
     std::vector<TilePoint> points;
     if (!LoadTilePoints(dir, tile, points, error)) return false;
     const double diagonal = FillMesh(points, mesh);
     indices.resize(points.size());
-    positions.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        indices[i] = points[i].index;
-        positions[i] = {{points[i].position[0], points[i].position[1], points[i].position[2]}};
-    }
+    for (std::size_t i = 0; i < points.size(); ++i) indices[i] = points[i].index;
     return TileParams(manifest, diagonal, param, error);
 }
 
@@ -92,8 +86,8 @@ std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector
 }
 
 TileBorder BorderOf(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
-                    const std::vector<std::array<float, 3>> &positions, std::uint64_t corePoints,
-                    const std::vector<bool> &owned, std::vector<int> &spares)
+                    const OrientedPointMesh &points, std::uint64_t corePoints, const std::vector<bool> &owned,
+                    std::vector<int> &spares)
 {
     TileBorder border;
     std::vector<int> spareOf(result.surfels.size(), -1); // position in `spares`
@@ -113,7 +107,7 @@ TileBorder BorderOf(const ResamplingResult &result, const std::vector<std::uint6
         }
         LeftPoint left;
         left.index = indices[v];
-        for (int k = 0; k < 3; ++k) left.position[k] = positions[v][k];
+        for (int k = 0; k < 3; ++k) left.position[k] = points.vert[v].cP()[k];
         border.leftPoints[std::size_t(spareOf[std::size_t(s)])].push_back(left);
     }
     std::sort(border.takenOver.begin(), border.takenOver.end());
@@ -125,8 +119,8 @@ namespace {
 /// One tile resampled: its points' input indices, the result and which surfels it owns.
 struct ResampledTile
 {
+    OrientedPointMesh mesh; ///< the tile's points, core first
     std::vector<std::uint64_t> indices;
-    std::vector<std::array<float, 3>> positions;
     ResamplingResult result;
     std::vector<bool> owned;
 };
@@ -135,12 +129,11 @@ struct ResampledTile
 bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEntry &tile, std::uint64_t targetCount,
                   ResampledTile &out, std::string &error)
 {
-    OrientedPointMesh mesh;
     ResamplingParams param;
-    if (!LoadTile(dir, tile, mesh, out.indices, out.positions, param, manifest, error)) return false;
+    if (!LoadTile(dir, tile, out.mesh, out.indices, param, manifest, error)) return false;
     param.targetCount = int(targetCount);
     try {
-        out.result = ResamplePointSet(mesh, param);
+        out.result = ResamplePointSet(out.mesh, param);
     } catch (const std::exception &e) {
         error = std::string("the resampling failed: ") + e.what();
         return false;
@@ -201,7 +194,7 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         figures.ownedMembers += std::uint64_t(tile.result.surfels[s].memberCount);
     }
     std::vector<int> spares;
-    const TileBorder border = run ? BorderOf(tile.result, tile.indices, tile.positions, entry->corePoints, tile.owned, spares) : TileBorder();
+    const TileBorder border = run ? BorderOf(tile.result, tile.indices, tile.mesh, entry->corePoints, tile.owned, spares) : TileBorder();
     for (const int s : spares) spare.push_back(tile.result.surfels[std::size_t(s)]);
     // The result last: it marks the tile done (merge.h).
     if (!WriteBorder(dir, id, border, error) || !WriteResult(TilePath(dir, id, ".spare"), spare, error) ||

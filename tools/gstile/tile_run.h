@@ -8,11 +8,11 @@
 #ifndef GSTILE_TILE_RUN_H
 #define GSTILE_TILE_RUN_H
 
-#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <vcg_ext/gaussphere/resampling.h>
 
 #include "border_points.h"
@@ -38,11 +38,11 @@ struct TileRunFigures
 std::vector<bool> OwnedSurfels(const vcg::gaussphere::ResamplingResult &result,
                                const std::vector<std::uint64_t> &indices, std::uint64_t corePoints);
 
-/// The border record of a tile's run (border_points.h) from its points' input indices and
-/// positions (core points first); `spares` receives the surfels it leaves to other tiles that hold
+/// The border record of a tile's run (border_points.h) from its points' input indices and the
+/// points as resampled (core points first); `spares` receives the surfels it leaves to other tiles that hold
 /// some of its core points, in the order of border.leftPoints.
 TileBorder BorderOf(const vcg::gaussphere::ResamplingResult &result, const std::vector<std::uint64_t> &indices,
-                    const std::vector<std::array<float, 3>> &positions, std::uint64_t corePoints,
+                    const vcg::gaussphere::OrientedPointMesh &points, std::uint64_t corePoints,
                     const std::vector<bool> &owned, std::vector<int> &spares);
 
 /// Resamples tile `id` of the tile directory `dir` and writes its border record and spare surfels
