@@ -141,7 +141,7 @@ int AdjustAndReport(const std::string &dir, const Manifest &manifest, std::vecto
     std::string error;
     if (!AdjustShares(dir, manifest, figures, error)) return Fail(error);
     char line[200];
-    std::snprintf(line, sizeof line, "[adjust] the tiles kept %llu of %llu surfels; %zu tile(s) to run again",
+    std::snprintf(line, sizeof line, "[adjust] the merge keeps %llu of %llu surfels; %zu tile(s) to run again",
                   (unsigned long long)figures.kept, (unsigned long long)manifest.targetCount, figures.rerun.size());
     PrintLine(line);
     rerun = figures.rerun;

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "border_points.h"
 #include "tile_files.h"
 
 using nlohmann::json;
@@ -210,18 +211,24 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
     std::vector<TileShare> shares;
     if (!ReadShareList(dir, shares, error)) return false;
     figures = AdjustFigures();
-    for (TileShare &share : shares) {
-        const TileEntry *tile = manifest.Find(share.id);
-        TileOutcome outcome;
-        const bool ran = ReadOutcome(dir, share.id, outcome, error);
+    std::vector<TileOutcome> outcomes(shares.size());
+    for (std::size_t s = 0; s < shares.size(); ++s) {
+        const bool ran = ReadOutcome(dir, shares[s].id, outcomes[s], error);
         if (!error.empty()) return false;
-        if (tile == nullptr || !ran || outcome.target != share.target) {
-            error = "tile " + std::to_string(share.id) + " has not run at its share's count: gstile run " + dir + " " +
-                    std::to_string(share.id);
+        if (manifest.Find(shares[s].id) == nullptr || !ran || outcomes[s].target != shares[s].target) {
+            error = "tile " + std::to_string(shares[s].id) + " has not run at its share's count: gstile run " + dir +
+                    " " + std::to_string(shares[s].id);
             return false;
         }
-        figures.kept += outcome.owned;
-        if (AdjustShare(share, outcome, tile->corePoints + tile->haloPoints)) figures.rerun.push_back(share.id);
+    }
+    // What the merge keeps of a tile: its result and its rescued spare surfels (border_points.h).
+    Rescues rescues;
+    if (!FindRescues(dir, manifest, rescues, error)) return false;
+    for (std::size_t s = 0; s < shares.size(); ++s) {
+        const TileEntry *tile = manifest.Find(shares[s].id);
+        outcomes[s].owned += rescues.spares[std::size_t(tile - manifest.tiles.data())].size();
+        figures.kept += outcomes[s].owned;
+        if (AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints)) figures.rerun.push_back(shares[s].id);
     }
     return WriteShareList(dir, manifest, shares, error);
 }

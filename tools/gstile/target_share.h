@@ -10,10 +10,11 @@
 // `gstile run` then resamples each tile to its count and keeps what it owns, near its share: the
 // ratio of made to owned clusters shifts between the level and the tile's count. It records what
 // it kept (TileOutcome), and
-//   3. `gstile adjust`: each tile that missed its share gets a new run count, interpolated between
-//      the counts tried (or extrapolated by the made-to-owned ratio of the last one), up to
-//      kAdjustRounds times a tile, and only those tiles run again; `all` and the Dask driver adjust
-//      until no tile is left to run.
+//   3. `gstile adjust`: each tile whose kept surfels (its result and the spare surfels the merge
+//      keeps for its border points, border_points.h) missed its share gets a new run count,
+//      interpolated between the counts tried (or extrapolated by the made-to-owned ratio of the
+//      last one), up to kAdjustRounds times a tile, and only those tiles run again; `all` and
+//      the Dask driver adjust until no tile is left to run.
 #ifndef GSTILE_TARGET_SHARE_H
 #define GSTILE_TARGET_SHARE_H
 
@@ -80,12 +81,13 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
 
 struct AdjustFigures
 {
-    std::uint64_t kept = 0;   ///< surfels the tiles' last runs kept
+    std::uint64_t kept = 0;   ///< surfels the merge keeps of the tiles' last runs, rescued ones included
     std::vector<int> rerun;   ///< tiles whose run count changed, to run again
 };
 
-/// Reads every tile's outcome and the shares, adjusts the tiles whose outcome missed their share
-/// and writes SharesPath(dir). An error names a tile that has not run at its share's count.
+/// Reads every tile's outcome, border record and the shares, adjusts the tiles whose kept surfels
+/// (rescued ones included) missed their share and writes SharesPath(dir). An error names a tile
+/// that has not run at its share's count.
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error);
 
 /// The tiles whose result or border record is missing, or whose run was at another count than
