@@ -108,7 +108,7 @@ stamp() {
   local dirty
   # Result files other stages wrote do not make the code differ from the commit.
   dirty=$(git -C "$here" status --porcelain --untracked-files=no | awk '{print $2}' |
-    grep -v '^bench/tile/results/' | paste -sd' ' -)
+    { grep -v '^bench/tile/results/' || true; } | paste -sd' ' -)
   echo "# commit $(git -C "$here" rev-parse --short HEAD)${dirty:+ (uncommitted changes in: $dirty)}"
   echo "# date $(date -u +%Y-%m-%d)"
   echo "# machine $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -1 | awk '{print $1, $2}'), $(nproc) cores"
