@@ -385,26 +385,19 @@ def tiling():
                        "uncovered points along tile faces, whole / tiled",
                        "surfels kept for border points no tile kept nor covered", "wall s whole / tiled",
                        "peak MiB whole / tiled"]
-    compare = tile_results("compare")
-    if compare:
-        stamp, f = compare
-        rows = whole_vs_tiled_rows(f, "")
+    for stage, shape, title, text in (
+            ("compare", "", "Tiled against whole",
+             "The dragon densified by `gsscale` (random order), level 8, halo 24 sample spacings; `gstile all` "
+             "against `gsresample` on the same input, compared by `gstile_compare` (docs/tiling.md, *Checking a "
+             "tiled run*)."),
+            ("flat", "drilled-box_", "Flat faces",
+             "The drilled box of `gsscale` (a cube with a cylindrical hole: flat faces, sharp edges), otherwise as "
+             "above (docs/tiling.md, *Halo width*: where clusters on a flat face start depends on points beyond "
+             "any halo).")):
+        results = tile_results(stage)
+        rows = whole_vs_tiled_rows(results[1], shape) if results else []
         if rows:
-            parts += ["### Tiled against whole", tile_stamp("compare", stamp),
-                      "The dragon densified by `gsscale` (random order), level 8, halo 24 sample spacings; "
-                      "`gstile all` against `gsresample` on the same input, compared by `gstile_compare` "
-                      "(docs/tiling.md, *Checking a tiled run*).",
-                      md_table(compare_columns, rows)]
-    flat = tile_results("flat")
-    if flat:
-        stamp, f = flat
-        rows = whole_vs_tiled_rows(f, "drilled-box_")
-        if rows:
-            parts += ["### Flat faces", tile_stamp("flat", stamp),
-                      "The drilled box of `gsscale` (a cube with a cylindrical hole: flat faces, sharp edges), "
-                      "otherwise as above (docs/tiling.md, *Halo width*: where clusters on a flat face start "
-                      "depends on points beyond any halo).",
-                      md_table(compare_columns, rows)]
+            parts += [f"### {title}", tile_stamp(stage, results[0]), text, md_table(compare_columns, rows)]
     halo = tile_results("halo")
     if halo:
         stamp, f = halo
