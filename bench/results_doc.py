@@ -338,6 +338,11 @@ def tile_results(stage):
             stamp[key] = value
         elif line.startswith("outputs_1_and_2_workers="):
             figures[("outputs", "identical")] = line.split("=", 1)[1] == "identical"
+        elif line.startswith("[merge] "):
+            merged = re.match(r"\[merge\] (\d+) surfels .*; (\d+) kept for (\d+) border points", line)
+            if merged:
+                figures[("merge", "surfels")], figures[("merge", "rescued")], figures[("merge", "uncovered")] = \
+                    merged.groups()
         else:
             words = line.split()
             for word in words[1:]:
@@ -379,7 +384,10 @@ def tiling():
                             ["tiles on 2 workers", f"{two:.1f}", f"{points / two:,.0f}",
                              f[("dask_2_workers", "largest_tile_peak_mib")] + " (largest tile)"]]),
                   f"Speed-up from one worker to two: {one / two:.2f}. The outputs of one and two workers are "
-                  + ("identical." if f.get(("outputs", "identical")) else "NOT identical.")]
+                  + ("identical." if f.get(("outputs", "identical")) else "NOT identical.")
+                  + (f" The merge wrote {int(f[('merge', 'surfels')]):,} surfels, {int(f[('merge', 'rescued')]):,} of "
+                     f"them kept for {int(f[('merge', 'uncovered')]):,} border points no tile kept nor covered "
+                     "(docs/tiling.md, *Border points*)." if ("merge", "surfels") in f else "")]
     compare_columns = ["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own, "
                        "L2,1 blended: tiled − whole", "points represented: tiled − whole",
                        "uncovered points along tile faces, whole / tiled",
