@@ -2,7 +2,7 @@
 """Tiled resampling on a Dask cluster: one task per tile of a tile directory, then the merge.
 
     scripts/gstile_dask.py TILEDIR OUTPUT.surfel|OUTPUT.ply [--scheduler ADDRESS]
-                           [--input INPUT.ply [--split-args "..."]] [--gstile PATH]
+                           [--input INPUT.ply [--split-args "..."] | --resume] [--gstile PATH]
 
 With --input the input is split into TILEDIR first (`gstile split`, on this machine); else
 TILEDIR holds a split already. With a target count in the split, a first round of tasks runs
@@ -14,7 +14,10 @@ cluster of --workers processes is started. A worker lost in the middle of a task
 the scheduler, which runs the task again elsewhere (a tile's result appears only once complete,
 so a lost run leaves nothing half-written, and a run is deterministic, so the output does not
 change). A tile that fails (bad data, a tile file damaged) stops the run with an error naming the
-tile. Debian's python3-distributed (scripts/setup.sh installs it); /usr/bin/python3 is Debian's.
+tile. --resume continues a run that stopped (the driver's machine lost, the cluster shut down):
+it runs only the tiles without a probe, the share only if there is none, and only the tiles `gstile
+tiles TILEDIR --pending` lists; a finished tile is not run again. Debian's python3-distributed
+(scripts/setup.sh installs it); /usr/bin/python3 is Debian's.
 """
 import argparse
 import json
@@ -53,6 +56,8 @@ def parse_arguments():
     parser.add_argument("--input", help="split this PLY into TILE_DIR first")
     parser.add_argument("--split-args", default="", help='options of `gstile split`, e.g. "--tile-points 2000000"')
     parser.add_argument("--gstile", default=DEFAULT_GSTILE, help="the gstile binary (the build's)")
+    parser.add_argument("--resume", action="store_true",
+                        help="run only what a stopped run left undone in TILE_DIR (no split)")
     return parser.parse_args()
 
 
@@ -69,6 +74,8 @@ def read_manifest(tile_dir):
 def run_tiles(client, gstile, command, tile_dir, ids, threads, round_number=0):
     """Submits every tile, prints each one's line as it completes; stops at the first failure.
     A tile run again after `gstile adjust` is a new task (its round in the key)."""
+    if not ids:
+        return
     futures = [client.submit(run_tile, gstile, command, tile_dir, i, threads, key=f"gstile-{command}-{i}-{round_number}",
                              pure=False)
                for i in ids]
@@ -93,6 +100,8 @@ def pending_tiles(gstile, tile_dir):
 
 def main():
     args = parse_arguments()
+    if args.resume and args.input:
+        sys.exit("gstile_dask: error: --resume continues the split already in TILE_DIR; --input would split anew")
     gstile = os.path.abspath(args.gstile)
     tile_dir = os.path.abspath(args.tile_dir)
     if args.input:
@@ -109,9 +118,12 @@ def main():
           flush=True)
     try:
         if manifest["target_count"] > 0:
-            run_tiles(client, gstile, "probe", tile_dir, ids, args.threads)
-            check_call([gstile, "share", tile_dir])
-        run_tiles(client, gstile, "run", tile_dir, ids, args.threads)
+            probed = [i for i in ids if os.path.exists(os.path.join(tile_dir, f"tile_{i:06d}.probe"))]
+            run_tiles(client, gstile, "probe", tile_dir, [i for i in ids if not args.resume or i not in probed],
+                      args.threads)
+            if not args.resume or not os.path.exists(os.path.join(tile_dir, "shares.json")):
+                check_call([gstile, "share", tile_dir])
+        run_tiles(client, gstile, "run", tile_dir, pending_tiles(gstile, tile_dir) if args.resume else ids, args.threads)
         round_number = 0
         while manifest["target_count"] > 0:
             check_call([gstile, "adjust", tile_dir])

@@ -7,7 +7,8 @@
 #      output is identical to the sequential probe, share, run, adjust (and runs again) and merge;
 #   2. one worker killed (SIGKILL) in the middle of the run: its task runs again on the other
 #      worker, and the output is still identical;
-#   3. a tile whose core file is damaged stops the run with an error naming the tile.
+#   3. --resume runs only the tiles a stopped run left without a result, with the same output;
+#   4. a tile whose core file is damaged stops the run with an error naming the tile.
 # Each task runs gstile through a wrapper that sleeps 0.5 s first, and worker 1 is killed when the
 # first tile is done: both workers are then busy with the next ones. Environment: GSTILE, DRIVER (scripts/gstile_dask.py), INPUT, WORK_DIR.
 set -euo pipefail
@@ -68,6 +69,18 @@ check "a worker killed mid-run: still identical" cmp sequential.surfel killed.su
 check "the scheduler lost the worker" grep -q "Remove worker" scheduler.log
 n=$("$GSTILE" tiles tiles | wc -l)
 check "every tile done" grep -q "$n/$n done |" killed.log
+
+# --resume: two results lost (a level run), one tile's outcome lost (a target run): only those run.
+for id in $("$GSTILE" tiles tiles | sed -n '2p;4p'); do rm "tiles/tile_$(printf %06d "$id").surfel"; done
+/usr/bin/python3 "$DRIVER" tiles resumed.surfel --resume --scheduler "$scheduler" --gstile "$PWD/slow_gstile" > resumed.log
+check "--resume: identical" cmp sequential.surfel resumed.surfel
+check "--resume: only the two tiles without a result ran" test "$(grep -c '^\[dask\] run ' resumed.log)" = 2
+rm "target_tiles/tile_$(printf %06d "$("$GSTILE" tiles target_tiles | sed -n 3p)").kept"
+/usr/bin/python3 "$DRIVER" target_tiles target_resumed.surfel --resume --scheduler "$scheduler" \
+  --gstile "$PWD/slow_gstile" > target_resumed.log
+check "--resume with a target: identical" cmp target_sequential.surfel target_resumed.surfel
+check "--resume with a target: no probe again, one tile ran" \
+  test "$(grep -c '^\[dask\] probe ' target_resumed.log) $(grep -c '^\[dask\] run ' target_resumed.log)" = "0 1"
 
 first=$("$GSTILE" tiles tiles | sed -n 3p)
 printf '\x7f' | dd of="tiles/tile_$(printf %06d "$first").core" bs=1 seek=40 conv=notrunc status=none
