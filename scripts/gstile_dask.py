@@ -118,9 +118,8 @@ def main():
           flush=True)
     try:
         if manifest["target_count"] > 0:
-            probed = [i for i in ids if os.path.exists(os.path.join(tile_dir, f"tile_{i:06d}.probe"))]
-            run_tiles(client, gstile, "probe", tile_dir, [i for i in ids if not args.resume or i not in probed],
-                      args.threads)
+            unprobed = [i for i in ids if not os.path.exists(os.path.join(tile_dir, f"tile_{i:06d}.probe"))]
+            run_tiles(client, gstile, "probe", tile_dir, unprobed if args.resume else ids, args.threads)
             if not args.resume or not os.path.exists(os.path.join(tile_dir, "shares.json")):
                 check_call([gstile, "share", tile_dir])
         run_tiles(client, gstile, "run", tile_dir, pending_tiles(gstile, tile_dir) if args.resume else ids, args.threads)

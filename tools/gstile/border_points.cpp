@@ -131,6 +131,8 @@ struct Orphans
     std::vector<std::pair<std::size_t, std::size_t>> owner; ///< (tile of the manifest, spare surfel)
 };
 
+/// Reads the border records twice, first for the taken-over points, then for the left ones, so
+/// that only the orphans stay in memory.
 bool FindOrphans(const std::string &dir, const Manifest &manifest, Orphans &orphans, std::string &error)
 {
     std::vector<std::uint64_t> takenOver;
@@ -195,12 +197,11 @@ bool FindRescues(const std::string &dir, const Manifest &manifest, Rescues &resc
     for (std::size_t o = 0; o < covered.size(); ++o) {
         if (covered[o]) continue;
         ++rescues.uncovered;
-        std::vector<std::size_t> &spares = rescues.spares[orphans.owner[o].first];
-        if (std::find(spares.begin(), spares.end(), orphans.owner[o].second) == spares.end())
-            spares.push_back(orphans.owner[o].second);
+        rescues.spares[orphans.owner[o].first].push_back(orphans.owner[o].second);
     }
     for (std::vector<std::size_t> &spares : rescues.spares) {
         std::sort(spares.begin(), spares.end());
+        spares.erase(std::unique(spares.begin(), spares.end()), spares.end());
         rescues.surfels += spares.size();
     }
     return true;

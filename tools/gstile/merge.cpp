@@ -82,15 +82,7 @@ bool Merge(const std::string &dir, const Manifest &manifest, const std::string &
            std::string &error)
 {
     figures = MergeFigures();
-    std::vector<int> pending;
-    if (manifest.targetCount > 0) {
-        if (!PendingTiles(dir, manifest, pending, error)) return false;
-        if (!pending.empty()) {
-            error = "tile " + std::to_string(pending.front()) + " has not run at its share's count (gstile adjust, " +
-                    "then gstile run on the tiles of gstile tiles --pending)";
-            return false;
-        }
-    }
+    if (manifest.targetCount > 0 && !RequireRunAtShares(dir, manifest, error)) return false;
     Rescues rescues;
     if (!CountSurfels(dir, manifest, figures.surfels, error) || !FindRescues(dir, manifest, rescues, error)) return false;
     figures.surfels += rescues.surfels;

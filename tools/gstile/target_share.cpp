@@ -211,15 +211,14 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
     std::vector<TileShare> shares;
     if (!ReadShareList(dir, shares, error)) return false;
     figures = AdjustFigures();
+    if (!RequireRunAtShares(dir, manifest, error)) return false;
     std::vector<TileOutcome> outcomes(shares.size());
     for (std::size_t s = 0; s < shares.size(); ++s) {
-        const bool ran = ReadOutcome(dir, shares[s].id, outcomes[s], error);
-        if (!error.empty()) return false;
-        if (manifest.Find(shares[s].id) == nullptr || !ran || outcomes[s].target != shares[s].target) {
-            error = "tile " + std::to_string(shares[s].id) + " has not run at its share's count: gstile run " + dir +
-                    " " + std::to_string(shares[s].id);
+        if (manifest.Find(shares[s].id) == nullptr) {
+            error = SharesPath(dir) + " has a share for tile " + std::to_string(shares[s].id) + ", which is not in the manifest";
             return false;
         }
+        if (!ReadOutcome(dir, shares[s].id, outcomes[s], error)) return false;
     }
     // What the merge keeps of a tile: its result and its rescued spare surfels (border_points.h).
     Rescues rescues;
@@ -249,6 +248,16 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
         if (!done) pending.push_back(tile.id);
     }
     return true;
+}
+
+bool RequireRunAtShares(const std::string &dir, const Manifest &manifest, std::string &error)
+{
+    std::vector<int> pending;
+    if (!PendingTiles(dir, manifest, pending, error)) return false;
+    if (pending.empty()) return true;
+    error = "tile " + std::to_string(pending.front()) + " has not run at its share's count (gstile run " + dir + " " +
+            std::to_string(pending.front()) + "; gstile tiles " + dir + " --pending lists them all)";
+    return false;
 }
 
 } // namespace gstile

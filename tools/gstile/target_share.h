@@ -94,6 +94,9 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
 /// their share's.
 bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error);
 
+/// False, with an error naming the first of them, when PendingTiles lists a tile.
+bool RequireRunAtShares(const std::string &dir, const Manifest &manifest, std::string &error);
+
 } // namespace gstile
 
 #endif
