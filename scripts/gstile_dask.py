@@ -5,18 +5,20 @@
                            [--input INPUT.ply [--split-args "..."] | --resume] [--gstile PATH]
 
 With --input the input is split into TILEDIR first (`gstile split`, on this machine); else
-TILEDIR holds a split already. With a target count in the split, a first round of tasks runs
-`gstile probe TILEDIR ID` and this machine `gstile share TILEDIR`, and after the runs `gstile
-adjust TILEDIR` gives the tiles that missed their share a new count, to run again (docs/tiling.md). Each task
-runs `gstile run TILEDIR ID` on a worker, which must see
+TILEDIR holds a split already. With a target count in the split, rounds of tasks run `gstile
+probe TILEDIR ID` on the tiles `gstile tiles TILEDIR --to-probe` lists until it lists none (the
+level search, then the splits' priorities at the level), this machine `gstile share TILEDIR`,
+and after the runs `gstile adjust TILEDIR` gives the tiles that missed their share a new count,
+to run again (docs/tiling.md). Each task runs `gstile run TILEDIR ID` on a worker, which must see
 TILEDIR and the gstile binary at the same paths (a shared folder). Without --scheduler a local
 cluster of --workers processes is started. A worker lost in the middle of a task is replaced by
 the scheduler, which runs the task again elsewhere (a tile's result appears only once complete,
 so a lost run leaves nothing half-written, and a run is deterministic, so the output does not
 change). A tile that fails (bad data, a tile file damaged) stops the run with an error naming the
 tile. --resume continues a run that stopped (the driver's machine lost, the cluster shut down):
-it runs only the tiles without a probe, the share only if there is none, and only the tiles `gstile
-tiles TILEDIR --pending` lists; a finished tile is not run again. Debian's python3-distributed
+it probes only what the probes on disk lack, keeps the shares if written, and runs only the tiles
+`gstile tiles TILEDIR --pending` lists; a finished tile is not run again. Without it, a target run
+over a split already there starts over from the probes. Debian's python3-distributed
 (scripts/setup.sh installs it); /usr/bin/python3 is Debian's.
 """
 import argparse
@@ -73,7 +75,8 @@ def read_manifest(tile_dir):
 
 def run_tiles(client, gstile, command, tile_dir, ids, threads, round_number=0):
     """Submits every tile, prints each one's line as it completes; stops at the first failure.
-    A tile run again after `gstile adjust` is a new task (its round in the key)."""
+    A tile probed or run again (the next probe round, after `gstile adjust`) is a new task (its
+    round in the key)."""
     if not ids:
         return
     futures = [client.submit(run_tile, gstile, command, tile_dir, i, threads, key=f"gstile-{command}-{i}-{round_number}",
@@ -90,9 +93,10 @@ def run_tiles(client, gstile, command, tile_dir, ids, threads, round_number=0):
         print(f"[dask] {command} {done}/{len(ids)} done | {line}", flush=True)
 
 
-def pending_tiles(gstile, tile_dir):
-    """The tiles whose result is missing or out of date (after `gstile adjust`: those to run again)."""
-    proc = subprocess.run([gstile, "tiles", tile_dir, "--pending"], capture_output=True, text=True)
+def listed_tiles(gstile, tile_dir, which):
+    """`gstile tiles TILEDIR --pending` (the tiles whose result is missing or out of date: after
+    `gstile adjust`, those to run again) or `--to-probe` (those whose probe lacks what the share needs)."""
+    proc = subprocess.run([gstile, "tiles", tile_dir, which], capture_output=True, text=True)
     if proc.returncode != 0:
         sys.exit(f"gstile_dask: error: {proc.stderr.strip()}")
     return [int(line) for line in proc.stdout.split()]
@@ -118,15 +122,21 @@ def main():
           flush=True)
     try:
         if manifest["target_count"] > 0:
-            unprobed = [i for i in ids if not os.path.exists(os.path.join(tile_dir, f"tile_{i:06d}.probe"))]
-            run_tiles(client, gstile, "probe", tile_dir, unprobed if args.resume else ids, args.threads)
-            if not args.resume or not os.path.exists(os.path.join(tile_dir, "shares.json")):
-                check_call([gstile, "share", tile_dir])
-        run_tiles(client, gstile, "run", tile_dir, pending_tiles(gstile, tile_dir) if args.resume else ids, args.threads)
+            if not args.resume:
+                for name in [f"tile_{i:06d}.probe" for i in ids] + ["shares.json"]:
+                    if os.path.exists(os.path.join(tile_dir, name)):
+                        os.remove(os.path.join(tile_dir, name))
+            probe_round = 0
+            while to_probe := listed_tiles(gstile, tile_dir, "--to-probe"):
+                run_tiles(client, gstile, "probe", tile_dir, to_probe, args.threads, probe_round)
+                probe_round += 1
+            check_call([gstile, "share", tile_dir])
+        run_tiles(client, gstile, "run", tile_dir, listed_tiles(gstile, tile_dir, "--pending") if args.resume else ids,
+                  args.threads)
         round_number = 0
         while manifest["target_count"] > 0:
             check_call([gstile, "adjust", tile_dir])
-            ids = pending_tiles(gstile, tile_dir)
+            ids = listed_tiles(gstile, tile_dir, "--pending")
             if not ids:
                 break
             round_number += 1

@@ -120,6 +120,30 @@ TEST(SplitToCount, ReachesTheCountExactly)
     EXPECT_EQ(int(labels.size()), 37);
 }
 
+// The record of the splits: one entry a split, in order, naming the cluster split and the one it
+// added, with priorities that never rise; the clusters end as the record says.
+TEST(SplitToCount, RecordsEachSplitWithFallingPriorities)
+{
+    const PointSet cube = CubeSurface(8, false);
+    Clustering plain = OneCluster(cube), recorded = plain;
+    ClusterRefiner(cube.points, cube.normals, plain, 1.0).SplitToCount(37);
+    std::vector<CountSplit> record;
+    ClusterRefiner(cube.points, cube.normals, recorded, 1.0).SplitToCount(37, nullptr, &record);
+    EXPECT_EQ(recorded.label, plain.label) << "recording changes nothing";
+    ASSERT_EQ(record.size(), 36u);
+    for (std::size_t k = 0; k < record.size(); ++k) {
+        EXPECT_EQ(record[k].added, int(k) + 1) << "each split adds the next cluster";
+        EXPECT_LT(record[k].cluster, record[k].added);
+        if (k > 0) {
+            const bool falls = record[k].error < record[k - 1].error ||
+                               (record[k].error == record[k - 1].error && record[k].size <= record[k - 1].size);
+            EXPECT_TRUE(falls) << "split " << k;
+        }
+    }
+    EXPECT_EQ(record[0].size, cube.Size()) << "the one cluster first";
+    EXPECT_GT(record[0].error, 0.0);
+}
+
 // Merging reports its progress and stops when told to: at 20 million points it runs for
 // seconds. Reporting does not change what is merged.
 TEST(MergeToCount, ReportsProgressAndCancels)

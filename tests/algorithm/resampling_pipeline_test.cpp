@@ -129,6 +129,34 @@ TEST(ResamplingPipeline, SphereCountGrowsWithLevel)
     }
 }
 
+// A target at a fixed level (a tile of a tiled run): the level given, not the one searched, and
+// without exchanges the splits that reached the count, recorded as surfel indices.
+TEST(ResamplingPipeline, ATargetAtAFixedLevelSplitsThatLevelsClustersAndRecordsTheSplits)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(20000);
+    ResamplingParams p;
+    p.subdivisionLevel = 6;
+    const int atLevel6 = int(gstest::Resample(s, p).surfels.size());
+    p.subdivisionLevel = 4;
+    const int atLevel = int(gstest::Resample(s, p).surfels.size());
+    ASSERT_GT(atLevel6, atLevel);
+    p.targetCount = atLevel6 + 50;
+    p.maxErrorExchanges = 0;
+    const ResamplingResult searched = gstest::Resample(s, p);
+    p.searchLevel = false;
+    const ResamplingResult fixed = gstest::Resample(s, p);
+    EXPECT_GE(searched.stats.levelUsed, 6) << "the search finds level 6 or finer for this count";
+    EXPECT_EQ(fixed.stats.levelUsed, 4);
+    EXPECT_EQ(fixed.stats.levelsTried, 1);
+    ASSERT_EQ(int(fixed.surfels.size()), p.targetCount);
+    ASSERT_EQ(int(fixed.targetSplits.size()), p.targetCount - atLevel);
+    for (std::size_t k = 0; k < fixed.targetSplits.size(); ++k)
+        EXPECT_EQ(fixed.targetSplits[k].added, atLevel + int(k)) << "surfel indices of the clusters added";
+    gstest::ExpectValidResult(fixed, s);
+    p.maxErrorExchanges = 4;
+    EXPECT_TRUE(gstest::Resample(s, p).targetSplits.empty()) << "exchanges change the clusters: no record";
+}
+
 /// Largest lambda1 / lambda2 over the clusters big enough to be split.
 double WorstSplittableElongation(const gstest::PointSet &s, const ResamplingResult &r, int minSplitSize)
 {

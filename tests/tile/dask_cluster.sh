@@ -3,7 +3,7 @@
 # (dask-scheduler, dask-worker of Debian's python3-distributed), against the sequential tiled run
 # of the same tile directory:
 #   1. the output is identical (cmp);
-#      With a target count the driver's first round probes the tiles and the shares follow; the
+#      With a target count the driver's first rounds probe the tiles and the shares follow; the
 #      output is identical to the sequential probe, share, run, adjust (and runs again) and merge;
 #   2. one worker killed (SIGKILL) in the middle of the run: its task runs again on the other
 #      worker, and the output is still identical;
@@ -46,7 +46,9 @@ run_driver two_workers.surfel > two_workers.log
 check "two workers: identical to the sequential run" cmp sequential.surfel two_workers.surfel
 
 "$GSTILE" split "$INPUT" target_tiles --tile-points 20000 --target 3000 > /dev/null
-for id in $("$GSTILE" tiles target_tiles); do "$GSTILE" probe target_tiles "$id" > /dev/null; done
+while ids=$("$GSTILE" tiles target_tiles --to-probe) && [ -n "$ids" ]; do
+  for id in $ids; do "$GSTILE" probe target_tiles "$id" > /dev/null; done
+done
 "$GSTILE" share target_tiles > /dev/null
 for id in $("$GSTILE" tiles target_tiles); do "$GSTILE" run target_tiles "$id" > /dev/null; done
 while "$GSTILE" adjust target_tiles > /dev/null && [ -n "$("$GSTILE" tiles target_tiles --pending)" ]; do
@@ -55,7 +57,7 @@ done
 "$GSTILE" merge target_tiles target_sequential.surfel > /dev/null
 rm -f target_tiles/tile_*.{surfel,border,spare,probe,kept} target_tiles/shares.json
 /usr/bin/python3 "$DRIVER" target_tiles target_dask.surfel --scheduler "$scheduler" --gstile "$PWD/slow_gstile" > target.log
-check "a target: the probe round, then identical to the sequential run" cmp target_sequential.surfel target_dask.surfel
+check "a target: the probe rounds, then identical to the sequential run" cmp target_sequential.surfel target_dask.surfel
 check "a target: every tile probed" grep -q "probe $("$GSTILE" tiles target_tiles | wc -l)/.* done |" target.log
 check "a target: tiles that missed their share ran again" grep -q "^\[adjust\] .* [1-9][0-9]* tile(s) to run again" target.log
 

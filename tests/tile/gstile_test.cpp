@@ -286,7 +286,7 @@ TEST_F(BunnyTiles, ARerunGivesTheSameBytes)
     EXPECT_EQ(before, after);
 }
 
-TEST(TargetShare, SharesSumToTheTargetInProportionToOwnedClusters)
+TEST(TargetShare, AMergedLevelSharesTheTargetInProportionToOwnedClusters)
 {
     Manifest manifest;
     manifest.targetCount = 7;
@@ -297,8 +297,8 @@ TEST(TargetShare, SharesSumToTheTargetInProportionToOwnedClusters)
         manifest.tiles[t].corePoints = points[t];
     }
     // Owned 10 : 30 : 0 : 30 gives the exact shares 1, 3, 0, 3 of 7; made/owned 2, 1.5, -, 4.
-    const std::vector<TileProbe> probes = {{10, 20, 10}, {11, 45, 30}, {12, 5, 0}, {13, 120, 30}};
-    const std::vector<TileShare> shares = ShareTarget(manifest, probes);
+    const std::vector<LevelCount> counts = {{2, 20, 10}, {2, 45, 30}, {2, 5, 0}, {2, 120, 30}};
+    const std::vector<TileShare> shares = ShareByOwned(manifest, counts);
     ASSERT_EQ(shares.size(), 4u);
     EXPECT_EQ(shares[0].owned, 1u);
     EXPECT_EQ(shares[1].owned, 3u);
@@ -311,10 +311,95 @@ TEST(TargetShare, SharesSumToTheTargetInProportionToOwnedClusters)
     EXPECT_EQ(shares[1].id, 11);
 
     manifest.targetCount = 8; // exact shares 1.14, 3.43, 0, 3.43: the largest remainders, in tile order, get one each
-    const std::vector<TileShare> more = ShareTarget(manifest, probes);
+    const std::vector<TileShare> more = ShareByOwned(manifest, counts);
     EXPECT_EQ(more[0].owned + more[1].owned + more[2].owned + more[3].owned, 8u);
     EXPECT_EQ(more[1].owned, 4u);
     EXPECT_EQ(more[3].owned, 3u);
+}
+
+/// Two tiles of 1,000 points, each making twice the clusters it owns at every level.
+Manifest TwoTiles(std::uint64_t target)
+{
+    Manifest manifest;
+    manifest.targetCount = target;
+    manifest.tiles.resize(2);
+    for (int t = 0; t < 2; ++t) {
+        manifest.tiles[t].id = 5 + t;
+        manifest.tiles[t].corePoints = manifest.tiles[t].haloPoints = 500;
+    }
+    return manifest;
+}
+
+void ProbeLevel(TileProbe &probe, int level, std::uint64_t owned) { probe.levels.push_back({level, 2 * owned, owned}); }
+
+TEST(TargetShare, TheProbesFollowTheLevelSearchOfTheTilesSummedCounts)
+{
+    const Manifest manifest = TwoTiles(100);
+    std::vector<TileProbe> probes(2);
+    ShareDecision d = DecideShares(manifest, 8, 1.15, probes);
+    ASSERT_FALSE(d.shared);
+    EXPECT_EQ(d.need.level, 8) << "the search starts at the level asked for";
+    EXPECT_EQ(d.need.splitCap, 0u);
+    ProbeLevel(probes[0], 8, 150);
+    d = DecideShares(manifest, 8, 1.15, probes);
+    EXPECT_EQ(d.need.level, 8) << "until every tile has it";
+    ProbeLevel(probes[1], 8, 50); // 200 > 100: coarser
+    d = DecideShares(manifest, 8, 1.15, probes);
+    EXPECT_EQ(d.need.level, 4);
+    ProbeLevel(probes[0], 4, 60);
+    ProbeLevel(probes[1], 4, 20); // 80 fits: between 4 and 8
+    d = DecideShares(manifest, 8, 1.15, probes);
+    EXPECT_EQ(d.need.level, 6);
+    ProbeLevel(probes[0], 6, 90);
+    ProbeLevel(probes[1], 6, 30); // 120 > 100
+    ProbeLevel(probes[0], 5, 70);
+    ProbeLevel(probes[1], 5, 25); // 95 fits; 6 gives 1.2 x the target, beyond 1.15: split level 5
+    d = DecideShares(manifest, 8, 1.15, probes);
+    ASSERT_FALSE(d.shared);
+    EXPECT_EQ(d.need.level, 5);
+    EXPECT_EQ(d.need.splitCap, 10u) << "twice the 5 clusters missing";
+
+    // At 1.25 the level giving 120 is merged down instead, by owned counts 90 : 30.
+    d = DecideShares(manifest, 8, 1.25, probes);
+    ASSERT_TRUE(d.shared);
+    EXPECT_EQ(d.shares.level, 6);
+    EXPECT_EQ(d.shares.tiles[0].owned, 75u);
+    EXPECT_EQ(d.shares.tiles[1].owned, 25u);
+    EXPECT_EQ(d.shares.tiles[0].target, 150u) << "twice made as owned";
+}
+
+TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
+{
+    const Manifest manifest = TwoTiles(10);
+    std::vector<TileProbe> probes(2);
+    for (int t = 0; t < 2; ++t) {
+        ProbeLevel(probes[t], 2, 3); // level 2 fits (6 of 10), levels 3 and 4 give far too many
+        ProbeLevel(probes[t], 4, 30);
+        ProbeLevel(probes[t], 3, 20);
+        probes[t].splitLevel = 2;
+        probes[t].splitCap = 8;
+    }
+    // Tile 5's priorities fall fast, tile 6's slowly: the four owned splits missing go 1 : 3.
+    probes[0].splits = {{9.0, 10, true}, {4.0, 6, false}, {1.0, 4, true}, {0.5, 3, true}};
+    probes[1].splits = {{8.0, 12, true}, {7.0, 9, true}, {6.0, 8, false}, {5.0, 7, true}, {4.0, 6, true}};
+    const ShareDecision d = DecideShares(manifest, 2, 1.15, probes);
+    ASSERT_TRUE(d.shared);
+    EXPECT_EQ(d.shares.level, 2);
+    EXPECT_EQ(d.shares.tiles[0].owned, 4u) << "3 at the level and the split at 9.0";
+    EXPECT_EQ(d.shares.tiles[1].owned, 6u) << "3 and the owned ones of 8.0, 7.0, 5.0";
+    EXPECT_EQ(d.shares.tiles[0].target, 6u + 1u);
+    EXPECT_EQ(d.shares.tiles[1].target, 6u + 4u) << "the halo's split at 6.0 runs too";
+
+    // A record cut short by its cap, the owned splits in it too few: twice the longest record.
+    std::vector<TileProbe> short_ = probes;
+    short_[0].splits = {{9.0, 10, false}, {8.5, 9, false}, {8.4, 9, false}, {8.3, 9, false},
+                        {8.2, 9, false}, {8.1, 9, false}, {8.0, 9, false}, {7.9, 9, false}};
+    short_[1].splits = {{1.0, 2, true}};
+    ShareDecision more = DecideShares(manifest, 2, 1.15, short_);
+    ASSERT_FALSE(more.shared);
+    EXPECT_EQ(more.need.splitCap, 16u);
+    EXPECT_TRUE(Satisfies(short_[1], more.need)) << "a record shorter than its cap holds all the tile's splits";
+    EXPECT_FALSE(Satisfies(short_[0], more.need));
 }
 
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
@@ -369,7 +454,7 @@ TEST(TargetShare, AfterItsRoundsATileKeepsTheNearestCountTried)
     for (const TileTrial &t : share.tried) EXPECT_LE(kept(share.target), t.owned);
 }
 
-TEST(TiledTarget, TheBunnysTilesMeetATargetSharedByDetail)
+TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
 {
     const std::string dir = ::testing::TempDir() + "gstile_bunny_target";
     SplitOptions options;
@@ -383,19 +468,38 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedByDetail)
     ASSERT_FALSE(RunTile(dir, manifest, manifest.tiles[0].id, figures, error)) << "a run before the share";
     EXPECT_NE(error.find("gstile probe"), std::string::npos) << error;
 
-    std::vector<TileProbe> probes(manifest.tiles.size());
-    for (std::size_t t = 0; t < probes.size(); ++t)
-        ASSERT_TRUE(ProbeTile(dir, manifest, manifest.tiles[t].id, probes[t], error)) << error;
-    std::vector<TileShare> shares;
-    ASSERT_TRUE(WriteShares(dir, manifest, shares, error)) << error;
-    std::uint64_t shared = 0;
-    for (std::size_t t = 0; t < shares.size(); ++t) {
-        shared += shares[t].owned;
-        // By detail: a tile owning more clusters at the level gets at least as large a share.
-        for (std::size_t u = 0; u < shares.size(); ++u)
-            if (probes[t].owned > probes[u].owned) EXPECT_GE(shares[t].owned, shares[u].owned);
+    error.clear();
+    std::vector<int> ids;
+    int probeRounds = 0;
+    for (; TilesToProbe(dir, manifest, ids, error) && !ids.empty(); ++probeRounds) {
+        for (const int id : ids) {
+            ProbeFigures probe;
+            ASSERT_TRUE(ProbeTile(dir, manifest, id, probe, error)) << error;
+            ASSERT_TRUE(probe.probed);
+            if (id == ids.back()) continue; // the round is complete: a probe again would start the next
+            ProbeFigures again;
+            ASSERT_TRUE(ProbeTile(dir, manifest, id, again, error)) << error;
+            EXPECT_FALSE(again.probed) << "a tile probed has what this round needs";
+        }
+        ASSERT_LE(probeRounds, 10);
     }
+    ASSERT_TRUE(error.empty()) << error;
+    EXPECT_GE(probeRounds, 2) << "the level, then the splits there";
+    ShareDecision decision;
+    bool written = false;
+    ASSERT_TRUE(WriteShares(dir, manifest, decision, written, error)) << error;
+    ASSERT_TRUE(decision.shared && written);
+    std::uint64_t shared = 0;
+    for (const TileShare &share : decision.shares.tiles) shared += share.owned;
     EXPECT_EQ(shared, 3000u);
+    vcg::gaussphere::OrientedPointMesh bunny;
+    vcg::gaussphere::ResamplingParams whole;
+    whole.targetCount = 3000;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(kBunny, bunny, error)) << error;
+    EXPECT_EQ(decision.shares.level, vcg::gaussphere::ResamplePointSet(bunny, whole).stats.levelUsed)
+        << "the level of the whole run";
+    ASSERT_TRUE(WriteShares(dir, manifest, decision, written, error)) << error;
+    EXPECT_FALSE(written) << "the shares are written once";
     for (const TileEntry &t : manifest.tiles) ASSERT_TRUE(RunTile(dir, manifest, t.id, figures, error)) << error;
     std::vector<int> pending;
     ASSERT_TRUE(PendingTiles(dir, manifest, pending, error)) << error;

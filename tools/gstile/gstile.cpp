@@ -6,7 +6,7 @@
 //   gstile adjust TILEDIR                                (with a target, after run: target_share.h)
 //   gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply
 //   gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]
-//   gstile tiles TILEDIR [--pending]
+//   gstile tiles TILEDIR [--pending | --to-probe]
 //
 // Exit status: 0 done, 1 a failure (one line `gstile: error: ...`, naming the tile when a tile
 // failed), 2 a bad command line.
@@ -32,12 +32,15 @@ const char *const kUsage =
     "       gstile adjust TILEDIR   (with a target, after run: then run the tiles of tiles --pending)\n"
     "       gstile merge TILEDIR OUTPUT.surfel|OUTPUT.ply\n"
     "       gstile all INPUT.ply OUTPUT.surfel|OUTPUT.ply [--tile-dir DIR] [split options]\n"
-    "       gstile tiles TILEDIR [--pending]   (the ids of the tiles, or of those left to run, one a line)\n"
+    "       gstile tiles TILEDIR [--pending | --to-probe]   (the ids of the tiles, of those left to run, or\n"
+    "                                                       of those to probe before the share, one a line)\n"
     "split streams a binary little-endian PLY (x y z nx ny nz) into tiles of about N points with\n"
     "their halo (default 4000000; a run takes up to about 200 B a point), X sample spacings wide\n"
     "(default 24); run resamples one tile and keeps the surfels it owns; merge concatenates them;\n"
     "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). With --target or\n"
-    "--percentage, probe runs each tile at the level and share divides the count by their detail;\n"
+    "--percentage, probe runs the tiles --to-probe lists (again, until it lists none: the level\n"
+    "search, then the priorities of the splits there) and share divides the count as the whole run\n"
+    "would spend it;\n"
     "adjust gives the tiles that missed their share a new count, up to 3 times a tile.\n"
     "gsresample's options:\n";
 
@@ -110,16 +113,40 @@ int Fail(const std::string &error)
 
 int WriteAndReportShares(const std::string &dir, const Manifest &manifest)
 {
-    std::vector<TileShare> shares;
+    ShareDecision decision;
+    bool written = false;
     std::string error;
-    if (!WriteShares(dir, manifest, shares, error)) return Fail(error);
-    std::uint64_t runCount = 0;
-    for (const TileShare &share : shares) runCount += share.target;
+    if (!WriteShares(dir, manifest, decision, written, error)) return Fail(error);
     char line[200];
-    std::snprintf(line, sizeof line, "[share] %llu surfels over %zu tiles by their detail (%llu made with halos)",
-                  (unsigned long long)manifest.targetCount, shares.size(), (unsigned long long)runCount);
+    if (!decision.shared) {
+        std::snprintf(line, sizeof line, "[share] not yet: the tiles `gstile tiles %s --to-probe` lists need a probe",
+                      dir.c_str());
+        PrintLine(line);
+        return 0;
+    }
+    std::uint64_t runCount = 0;
+    for (const TileShare &share : decision.shares.tiles) runCount += share.target;
+    std::snprintf(line, sizeof line, "[share] %llu surfels over %zu tiles at level %d (%llu made with halos)%s",
+                  (unsigned long long)manifest.targetCount, decision.shares.tiles.size(), decision.shares.level,
+                  (unsigned long long)runCount, written ? "" : ", shared already");
     PrintLine(line);
     return 0;
+}
+
+/// Probes the tiles until the share is decided, then writes it.
+int ProbeAndShare(const std::string &dir, const Manifest &manifest)
+{
+    std::vector<int> ids;
+    std::string error;
+    while (TilesToProbe(dir, manifest, ids, error) && !ids.empty()) {
+        for (std::size_t t = 0; t < ids.size(); ++t) {
+            ProbeFigures figures;
+            if (!ProbeTile(dir, manifest, ids[t], figures, error)) return Fail(error);
+            PrintLine(ProbeLine(figures, t + 1, ids.size()));
+        }
+    }
+    if (!error.empty()) return Fail(error);
+    return WriteAndReportShares(dir, manifest);
 }
 
 /// Runs the tiles `ids` and prints each one's figures line.
@@ -150,17 +177,8 @@ int AdjustAndReport(const std::string &dir, const Manifest &manifest, std::vecto
 
 int RunAll(const std::string &dir, const Manifest &manifest)
 {
-    for (std::size_t t = 0; manifest.targetCount > 0 && t < manifest.tiles.size(); ++t) {
-        TileProbe probe;
-        std::string error;
-        if (!ProbeTile(dir, manifest, manifest.tiles[t].id, probe, error)) return Fail(error);
-        char line[160];
-        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, %llu clusters, %llu owned", t + 1,
-                      manifest.tiles.size(), probe.id, (unsigned long long)probe.clusters, (unsigned long long)probe.owned);
-        PrintLine(line);
-    }
     if (manifest.targetCount > 0)
-        if (const int status = WriteAndReportShares(dir, manifest)) return status;
+        if (const int status = ProbeAndShare(dir, manifest)) return status;
     std::vector<int> ids;
     for (const TileEntry &tile : manifest.tiles) ids.push_back(tile.id);
     while (!ids.empty()) {
@@ -224,10 +242,10 @@ int Dispatch(const std::string &command, int argc, char **argv)
         return Fail(paths[0] + " was split without a target (--target or --percentage): nothing to share");
     if (command == "probe") {
         Expect(paths.size() == 2, "TILEDIR TILE_ID");
-        TileProbe probe;
-        if (!ProbeTile(paths[0], manifest, TileId(paths[1]), probe, error)) return Fail(error);
-        std::printf("tile %d: %llu clusters, %llu owned\n", probe.id, (unsigned long long)probe.clusters,
-                    (unsigned long long)probe.owned);
+        ProbeFigures figures;
+        const int id = TileId(paths[1]);
+        if (!ProbeTile(paths[0], manifest, id, figures, error)) return Fail(error);
+        PrintLine(ProbeLine(figures, std::size_t(manifest.Find(id) - manifest.tiles.data()) + 1, manifest.tiles.size()));
         return 0;
     }
     if (command == "share") {
@@ -243,11 +261,15 @@ int Dispatch(const std::string &command, int argc, char **argv)
         Expect(paths.size() == 2, "TILEDIR OUTPUT");
         return MergeTiles(paths[0], manifest, paths[1]);
     }
-    Expect(command == "tiles" && (paths.size() == 1 || (paths.size() == 2 && paths[1] == "--pending")),
+    Expect(command == "tiles" && (paths.size() == 1 || (paths.size() == 2 && (paths[1] == "--pending" || paths[1] == "--to-probe"))),
            "a command: split, run, probe, share, adjust, merge, all or tiles");
     std::vector<int> ids;
     for (const TileEntry &tile : manifest.tiles) ids.push_back(tile.id);
-    if (paths.size() == 2 && !PendingTiles(paths[0], manifest, ids, error)) return Fail(error);
+    if (paths.size() == 2 && paths[1] == "--pending" && !PendingTiles(paths[0], manifest, ids, error)) return Fail(error);
+    if (paths.size() == 2 && paths[1] == "--to-probe") {
+        if (manifest.targetCount == 0) return Fail(paths[0] + " was split without a target: no tile to probe");
+        if (!TilesToProbe(paths[0], manifest, ids, error)) return Fail(error);
+    }
     for (const int id : ids) std::printf("%d\n", id);
     return 0;
 }

@@ -7,8 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <vcg_ext/gaussphere/size_control/level_search.h>
+
 #include "border_points.h"
 #include "tile_files.h"
+#include "tile_params.h"
 
 using nlohmann::json;
 
@@ -16,23 +19,38 @@ namespace gstile {
 
 namespace {
 
-constexpr const char *kRunProbeAndShare = "with a target, run `gstile probe` on every tile, then `gstile share`";
+constexpr const char *kRunProbeAndShare =
+    "with a target, run `gstile probe` on the tiles `gstile tiles DIR --to-probe` lists until it lists none, then `gstile share`";
 
 } // namespace
 
 std::string SharesPath(const std::string &dir) { return dir + "/shares.json"; }
 
-std::vector<TileShare> ShareTarget(const Manifest &manifest, const std::vector<TileProbe> &probes)
+const LevelCount *TileProbe::At(int level) const
+{
+    for (const LevelCount &c : levels)
+        if (c.level == level) return &c;
+    return nullptr;
+}
+
+bool Satisfies(const TileProbe &probe, const ProbeNeed &need)
+{
+    if (need.splitCap == 0) return probe.At(need.level) != nullptr;
+    // A record shorter than its cap holds every split the tile has.
+    return probe.splitLevel == need.level && (probe.splitCap >= need.splitCap || probe.splits.size() < probe.splitCap);
+}
+
+std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<LevelCount> &counts)
 {
     std::uint64_t ownedSum = 0;
-    for (const TileProbe &p : probes) ownedSum += p.owned;
-    std::vector<TileShare> shares(probes.size());
+    for (const LevelCount &c : counts) ownedSum += c.owned;
+    std::vector<TileShare> shares(counts.size());
     // Exact in integers: target x owned fits 128 bits.
     std::vector<std::pair<std::uint64_t, std::size_t>> remainders; // (remainder of the division, tile)
     std::uint64_t given = 0;
-    for (std::size_t t = 0; t < probes.size(); ++t) {
-        const unsigned __int128 product = (unsigned __int128)manifest.targetCount * probes[t].owned;
-        shares[t].id = probes[t].id;
+    for (std::size_t t = 0; t < counts.size(); ++t) {
+        const unsigned __int128 product = (unsigned __int128)manifest.targetCount * counts[t].owned;
+        shares[t].id = manifest.tiles[t].id;
         shares[t].owned = ownedSum ? std::uint64_t(product / ownedSum) : 0;
         given += shares[t].owned;
         remainders.push_back({ownedSum ? std::uint64_t(product % ownedSum) : 0, t});
@@ -42,69 +60,193 @@ std::vector<TileShare> ShareTarget(const Manifest &manifest, const std::vector<T
                      [](const auto &a, const auto &b) { return a.first > b.first; });
     for (std::size_t r = 0; given < manifest.targetCount && r < remainders.size(); ++r, ++given)
         ++shares[remainders[r].second].owned;
-    for (std::size_t t = 0; t < probes.size(); ++t) {
+    for (std::size_t t = 0; t < counts.size(); ++t) {
         const TileEntry &tile = manifest.tiles[t];
-        const double madePerOwned = probes[t].owned ? double(probes[t].clusters) / double(probes[t].owned) : 1;
+        const double madePerOwned = counts[t].owned ? double(counts[t].clusters) / double(counts[t].owned) : 1;
         const auto target = std::uint64_t(std::llround(double(shares[t].owned) * madePerOwned));
         shares[t].target = shares[t].owned ? std::min(target, tile.corePoints + tile.haloPoints) : 0;
     }
     return shares;
 }
 
+namespace {
+
+/// The tiles' splits at the level taken in priority order (ties by tile, then by order within
+/// it) until the owned clusters reach the target: `taken` and `addedOwned` per tile. False when
+/// the splits recorded run out first.
+bool TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::uint64_t target,
+                std::vector<std::uint64_t> &taken, std::vector<std::uint64_t> &addedOwned)
+{
+    struct Entry
+    {
+        const SplitKey *key;
+        std::size_t tile, order;
+    };
+    std::vector<Entry> entries;
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        for (std::size_t k = 0; k < probes[t].splits.size(); ++k) entries.push_back({&probes[t].splits[k], t, k});
+    // Along a tile's record the priorities never rise (CountSplit), so what the order takes of each
+    // tile is a prefix of its record: the splits its run at the count makes.
+    std::sort(entries.begin(), entries.end(), [](const Entry &a, const Entry &b) {
+        if (a.key->error != b.key->error) return a.key->error > b.key->error;
+        if (a.key->size != b.key->size) return a.key->size > b.key->size;
+        return a.tile != b.tile ? a.tile < b.tile : a.order < b.order;
+    });
+    taken.assign(probes.size(), 0);
+    addedOwned.assign(probes.size(), 0);
+    for (std::size_t e = 0; e < entries.size() && owned < target; ++e) {
+        ++taken[entries[e].tile];
+        if (entries[e].key->addsOwned) {
+            ++addedOwned[entries[e].tile];
+            ++owned;
+        }
+    }
+    return owned >= target;
+}
+
+} // namespace
+
+ShareDecision DecideShares(const Manifest &manifest, int startLevel, double mergeWithin,
+                           const std::vector<TileProbe> &probes)
+{
+    ShareDecision decision;
+    const auto lacking = [&probes](const ProbeNeed &need) {
+        return std::any_of(probes.begin(), probes.end(), [&need](const TileProbe &p) { return !Satisfies(p, need); });
+    };
+    vcg::gaussphere::LevelSearch search(manifest.targetCount, startLevel);
+    while (const int level = search.Next()) {
+        decision.need = {level, 0};
+        if (lacking(decision.need)) return decision;
+        std::uint64_t owned = 0;
+        for (const TileProbe &p : probes) owned += p.At(level)->owned;
+        search.Tell(owned);
+    }
+    const int level = search.Level(mergeWithin);
+    std::vector<LevelCount> counts;
+    std::uint64_t owned = 0;
+    for (const TileProbe &p : probes) {
+        counts.push_back(*p.At(level));
+        owned += counts.back().owned;
+    }
+    decision.shares.target = manifest.targetCount;
+    decision.shares.level = level;
+    if (owned >= manifest.targetCount) { // merged down, or as many
+        decision.shares.tiles = ShareByOwned(manifest, counts);
+        decision.shared = true;
+        return decision;
+    }
+    // Up to the target by splits. A tile's record interleaves splits of clusters it owns with
+    // splits of its halo's: twice the count missing, and twice the longest record when too few.
+    decision.need = {level, 2 * (manifest.targetCount - owned)};
+    if (lacking(decision.need)) return decision;
+    std::vector<std::uint64_t> taken, addedOwned;
+    if (!TakeSplits(probes, owned, manifest.targetCount, taken, addedOwned)) {
+        std::uint64_t longest = 0;
+        for (const TileProbe &p : probes) longest = std::max(longest, p.splitCap);
+        decision.need.splitCap = std::max(decision.need.splitCap, 2 * longest);
+        if (lacking(decision.need)) return decision;
+    }
+    for (std::size_t t = 0; t < probes.size(); ++t) {
+        TileShare share;
+        share.id = manifest.tiles[t].id;
+        share.owned = counts[t].owned + addedOwned[t];
+        const TileEntry &tile = manifest.tiles[t];
+        share.target = share.owned ? std::min(counts[t].clusters + taken[t], tile.corePoints + tile.haloPoints) : 0;
+        decision.shares.tiles.push_back(share);
+    }
+    decision.shared = true;
+    return decision;
+}
+
 bool WriteProbe(const std::string &dir, const TileProbe &probe, std::string &error)
 {
-    return WriteJsonFile(TilePath(dir, probe.id, ".probe"), {{"clusters", probe.clusters}, {"owned", probe.owned}}, error);
+    json levels = json::array(), errors = json::array(), sizes = json::array(), addsOwned = json::array();
+    for (const LevelCount &c : probe.levels) levels.push_back({c.level, c.clusters, c.owned});
+    for (const SplitKey &k : probe.splits) {
+        errors.push_back(k.error);
+        sizes.push_back(k.size);
+        addsOwned.push_back(k.addsOwned ? 1 : 0);
+    }
+    return WriteJsonFile(TilePath(dir, probe.id, ".probe"),
+                         {{"levels", levels},
+                          {"split_level", probe.splitLevel},
+                          {"split_cap", probe.splitCap},
+                          {"split_error", errors},
+                          {"split_size", sizes},
+                          {"split_adds_owned", addsOwned}},
+                         error);
 }
 
 bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &error)
 {
+    const std::string path = TilePath(dir, id, ".probe");
+    probe = TileProbe();
+    probe.id = id;
+    if (!std::ifstream(path)) return false;
     json j;
-    if (!ReadJsonFile(TilePath(dir, id, ".probe"), kRunProbeAndShare, j, error)) return false;
+    if (!ReadJsonFile(path, kRunProbeAndShare, j, error)) return false;
     try {
-        probe.id = id;
-        probe.clusters = j.at("clusters").get<std::uint64_t>();
-        probe.owned = j.at("owned").get<std::uint64_t>();
+        for (const json &c : j.at("levels"))
+            probe.levels.push_back({c.at(0).get<int>(), c.at(1).get<std::uint64_t>(), c.at(2).get<std::uint64_t>()});
+        probe.splitLevel = j.at("split_level").get<int>();
+        probe.splitCap = j.at("split_cap").get<std::uint64_t>();
+        const json &errors = j.at("split_error"), &sizes = j.at("split_size"), &addsOwned = j.at("split_adds_owned");
+        if (errors.size() != sizes.size() || errors.size() != addsOwned.size() || errors.size() > probe.splitCap)
+            throw std::runtime_error("the split records differ in length or exceed their cap");
+        for (std::size_t k = 0; k < errors.size(); ++k) {
+            const SplitKey key{errors[k].get<double>(), sizes[k].get<int>(), addsOwned[k].get<int>() != 0};
+            if (!std::isfinite(key.error) || (k > 0 && key.error > probe.splits.back().error))
+                throw std::runtime_error("the split priorities are not finite and falling");
+            probe.splits.push_back(key);
+        }
     } catch (const std::exception &e) {
-        error = TilePath(dir, id, ".probe") + " is not valid: " + e.what();
+        error = path + " is not valid: " + e.what();
         return false;
     }
+    return true;
+}
+
+bool ReadProbes(const std::string &dir, const Manifest &manifest, std::vector<TileProbe> &probes, std::string &error)
+{
+    probes.assign(manifest.tiles.size(), TileProbe());
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        if (!ReadProbe(dir, manifest.tiles[t].id, probes[t], error) && !error.empty()) return false;
+    return true;
+}
+
+bool DecideFromProbes(const std::string &dir, const Manifest &manifest, ShareDecision &decision, std::string &error)
+{
+    vcg::gaussphere::ResamplingParams param;
+    std::vector<TileProbe> probes;
+    if (!TileParams(manifest, 0, param, error) || !ReadProbes(dir, manifest, probes, error)) return false;
+    decision = DecideShares(manifest, param.subdivisionLevel, param.tuning.mergeWithin, probes);
+    return true;
+}
+
+bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<int> &ids, std::string &error)
+{
+    ids.clear();
+    if (std::ifstream(SharesPath(dir))) return true;
+    std::vector<TileProbe> probes;
+    ShareDecision decision;
+    if (!ReadProbes(dir, manifest, probes, error) || !DecideFromProbes(dir, manifest, decision, error)) return false;
+    if (decision.shared) return true;
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        if (!Satisfies(probes[t], decision.need)) ids.push_back(manifest.tiles[t].id);
     return true;
 }
 
 namespace {
 
-bool WriteShareList(const std::string &dir, const Manifest &manifest, const std::vector<TileShare> &shares,
-                    std::string &error)
+bool WriteShareList(const std::string &dir, const Shares &shares, std::string &error)
 {
     json list = json::array();
-    for (const TileShare &s : shares) {
+    for (const TileShare &s : shares.tiles) {
         json tried = json::array();
         for (const TileTrial &t : s.tried) tried.push_back({t.target, t.owned});
         list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"tried", tried}});
     }
-    return WriteJsonFile(SharesPath(dir), {{"target", manifest.targetCount}, {"tiles", list}}, error);
-}
-
-bool ReadShareList(const std::string &dir, std::vector<TileShare> &shares, std::string &error)
-{
-    json j;
-    if (!ReadJsonFile(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
-    try {
-        shares.clear();
-        for (const json &t : j.at("tiles")) {
-            TileShare share;
-            share.id = t.at("id").get<int>();
-            share.owned = t.at("owned").get<std::uint64_t>();
-            share.target = t.at("target").get<std::uint64_t>();
-            for (const json &trial : t.value("tried", json::array()))
-                share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
-            shares.push_back(share);
-        }
-    } catch (const std::exception &e) {
-        error = SharesPath(dir) + " is not valid: " + e.what();
-        return false;
-    }
-    return true;
+    return WriteJsonFile(SharesPath(dir), {{"target", shares.target}, {"level", shares.level}, {"tiles", list}}, error);
 }
 
 /// The trial that kept the count nearest to the share (the latest of equals).
@@ -121,20 +263,51 @@ const TileTrial &NearestTrial(const TileShare &share)
 
 } // namespace
 
-bool WriteShares(const std::string &dir, const Manifest &manifest, std::vector<TileShare> &shares, std::string &error)
+bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
 {
-    std::vector<TileProbe> probes(manifest.tiles.size());
-    for (std::size_t t = 0; t < probes.size(); ++t)
-        if (!ReadProbe(dir, manifest.tiles[t].id, probes[t], error)) return false;
-    shares = ShareTarget(manifest, probes);
-    return WriteShareList(dir, manifest, shares, error);
+    json j;
+    if (!ReadJsonFile(SharesPath(dir), kRunProbeAndShare, j, error)) return false;
+    try {
+        shares = Shares();
+        shares.target = j.at("target").get<std::uint64_t>();
+        shares.level = j.at("level").get<int>();
+        for (const json &t : j.at("tiles")) {
+            TileShare share;
+            share.id = t.at("id").get<int>();
+            share.owned = t.at("owned").get<std::uint64_t>();
+            share.target = t.at("target").get<std::uint64_t>();
+            for (const json &trial : t.value("tried", json::array()))
+                share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
+            shares.tiles.push_back(share);
+        }
+    } catch (const std::exception &e) {
+        error = SharesPath(dir) + " is not valid: " + e.what();
+        return false;
+    }
+    return true;
 }
 
-bool ReadShare(const std::string &dir, int id, TileShare &share, std::string &error)
+bool WriteShares(const std::string &dir, const Manifest &manifest, ShareDecision &decision, bool &written,
+                 std::string &error)
 {
-    std::vector<TileShare> shares;
-    if (!ReadShareList(dir, shares, error)) return false;
-    for (const TileShare &s : shares) {
+    written = false;
+    if (std::ifstream(SharesPath(dir))) {
+        decision = ShareDecision();
+        decision.shared = true;
+        return ReadShares(dir, decision.shares, error);
+    }
+    if (!DecideFromProbes(dir, manifest, decision, error)) return false;
+    if (!decision.shared) return true;
+    written = WriteShareList(dir, decision.shares, error);
+    return written;
+}
+
+bool ReadShare(const std::string &dir, int id, int &level, TileShare &share, std::string &error)
+{
+    Shares shares;
+    if (!ReadShares(dir, shares, error)) return false;
+    level = shares.level;
+    for (const TileShare &s : shares.tiles) {
         if (s.id != id) continue;
         share = s;
         return true;
@@ -208,8 +381,9 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
 
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error)
 {
-    std::vector<TileShare> shares;
-    if (!ReadShareList(dir, shares, error)) return false;
+    Shares all;
+    if (!ReadShares(dir, all, error)) return false;
+    std::vector<TileShare> &shares = all.tiles;
     figures = AdjustFigures();
     if (!RequireRunAtShares(dir, manifest, error)) return false;
     std::vector<TileOutcome> outcomes(shares.size());
@@ -229,13 +403,14 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         figures.kept += outcomes[s].owned;
         if (AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints)) figures.rerun.push_back(shares[s].id);
     }
-    return WriteShareList(dir, manifest, shares, error);
+    return WriteShareList(dir, all, error);
 }
 
 bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error)
 {
-    std::vector<TileShare> shares;
-    if (manifest.targetCount > 0 && !ReadShareList(dir, shares, error)) return false;
+    Shares all;
+    if (manifest.targetCount > 0 && !ReadShares(dir, all, error)) return false;
+    const std::vector<TileShare> &shares = all.tiles;
     pending.clear();
     for (const TileEntry &tile : manifest.tiles) {
         bool done = std::ifstream(TilePath(dir, tile.id, ".surfel")) && std::ifstream(TilePath(dir, tile.id, ".border"));

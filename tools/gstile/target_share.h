@@ -1,20 +1,28 @@
-// A target count shared out over the tiles by their detail (docs/tiling.md, "Size controls").
+// A target count shared out over the tiles as the whole run would spend it (docs/tiling.md,
+// "Size controls").
 //
-// The whole run reaches its target from the clusters of one Gaussian sphere level, split or merged
-// where the error is largest: a detailed region gets more surfels than a flat one of as many
-// points. The tiles follow it in two rounds:
-//   1. `gstile probe`: each tile at the level, counting the clusters it makes and those it owns;
-//   2. `gstile share`: the target shared out in proportion to the owned counts (largest remainder,
-//      so the shares sum to the target exactly), each share turned into a count for the tile's
-//      whole run, halo included, by the tile's ratio of made to owned clusters.
-// `gstile run` then resamples each tile to its count and keeps what it owns, near its share: the
-// ratio of made to owned clusters shifts between the level and the tile's count. It records what
-// it kept (TileOutcome), and
+// The whole run reaches its target from the clusters of one Gaussian sphere level, split where
+// the L2,1 error is largest (or merged where neighbours are most alike): a detailed region gets
+// more surfels than a flat one of as many points. The tiles follow it:
+//   1. `gstile probe`, in rounds: each tile counts the clusters it makes and owns at the levels
+//      the level search asks for (LevelSearch over the tiles' summed owned counts: the level the
+//      whole input gives), then records, at that level, the priorities of its splits in order
+//      and which of them add a cluster it owns;
+//   2. `gstile share`: the splits of all tiles taken in priority order until the owned counts
+//      sum to the target (one threshold on the priority for every tile, as in the whole run's
+//      single queue); each tile runs at the level with its clusters plus its splits taken, and
+//      should keep its clusters owned plus the owned ones its splits add. A level that gives
+//      too many is merged down instead, the target shared in proportion to the owned counts.
+// `gstile run` then resamples each tile at the level to its count and keeps what it owns. It
+// records what it kept (TileOutcome), and
 //   3. `gstile adjust`: each tile whose kept surfels (its result and the spare surfels the merge
-//      keeps for its border points, border_points.h) missed its share gets a new run count,
-//      interpolated between the counts tried (or extrapolated by the made-to-owned ratio of the
-//      last one), up to kAdjustRounds times a tile, and only those tiles run again; `all` and
-//      the Dask driver adjust until no tile is left to run.
+//      keeps for its border points, border_points.h) missed its share (the exchanges and the
+//      rescued surfels move a few) gets a new run count, interpolated between the counts tried
+//      (or extrapolated by the made-to-owned ratio of the last one), up to kAdjustRounds times a
+//      tile, and only those tiles run again; `all` and the Dask driver adjust until no tile is
+//      left to run.
+// What a probe does next is decided from the probes written so far (DecideShares), so any
+// number of workers can probe in any order, and a stopped run resumes where it stopped.
 #ifndef GSTILE_TARGET_SHARE_H
 #define GSTILE_TARGET_SHARE_H
 
@@ -26,12 +34,45 @@
 
 namespace gstile {
 
-struct TileProbe
+/// A tile's clusters at one level.
+struct LevelCount
 {
-    int id = 0;
+    int level = 0;
     std::uint64_t clusters = 0; ///< clusters the tile's points make at the level, halo included
     std::uint64_t owned = 0;    ///< ... of which the tile owns (tile_run.h)
 };
+
+/// One of a tile's splits towards a count (vcg::gaussphere::CountSplit): its priority, and whether
+/// the cluster it adds is one the tile owns.
+struct SplitKey
+{
+    double error = 0;
+    int size = 0;
+    bool addsOwned = false;
+};
+
+/// What a tile's probes found.
+struct TileProbe
+{
+    int id = 0;
+    std::vector<LevelCount> levels;
+    int splitLevel = 0;            ///< the level of `splits` (0: none recorded)
+    std::uint64_t splitCap = 0;    ///< the splits asked for
+    std::vector<SplitKey> splits;  ///< in order; fewer than splitCap when the tile had no more
+
+    const LevelCount *At(int level) const;
+};
+
+/// What the next probe of every tile must find: its counts at `level` (splitCap 0), or its first
+/// splitCap splits at `level`.
+struct ProbeNeed
+{
+    int level = 0;
+    std::uint64_t splitCap = 0;
+};
+
+/// Whether `probe` holds what `need` asks for.
+bool Satisfies(const TileProbe &probe, const ProbeNeed &need);
 
 /// A run count tried and the surfels the run kept.
 struct TileTrial
@@ -47,6 +88,33 @@ struct TileShare
     std::vector<TileTrial> tried; ///< the runs adjusted from, in the order run
 };
 
+/// The shares, once the probes hold all they need: the level every tile runs at and each tile's share.
+struct Shares
+{
+    std::uint64_t target = 0;
+    int level = 0;
+    std::vector<TileShare> tiles;
+};
+
+/// The decision the probes so far allow: the next probe, or the shares.
+struct ShareDecision
+{
+    bool shared = false;
+    ProbeNeed need;  ///< when not shared
+    Shares shares;   ///< when shared
+};
+
+/// Decides from `probes` (one per tile of `manifest`, in its order; a tile not probed yet has no
+/// levels) with the level search of the tiles' parameters (start level, mergeWithin).
+ShareDecision DecideShares(const Manifest &manifest, int startLevel, double mergeWithin,
+                           const std::vector<TileProbe> &probes);
+
+/// The target shared in proportion to the tiles' owned counts at one level (`counts`, one per
+/// tile of the manifest, in its order), largest remainders first, so that the shares sum to the
+/// target exactly; each share turned into a run count by the tile's ratio of made to owned
+/// clusters, capped by its points.
+std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<LevelCount> &counts);
+
 /// What `gstile run` kept of a tile with a target, beside its result.
 typedef TileTrial TileOutcome;
 
@@ -54,17 +122,26 @@ typedef TileTrial TileOutcome;
 /// (docs/tiling.md), and each costs a run of the tile.
 constexpr std::size_t kAdjustRounds = 3;
 
-/// The shares of manifest.targetCount over `probes` (one per tile of the manifest, in its order),
-/// each tile's run count capped by its points.
-std::vector<TileShare> ShareTarget(const Manifest &manifest, const std::vector<TileProbe> &probes);
-
 bool WriteProbe(const std::string &dir, const TileProbe &probe, std::string &error);
+/// False, with no error, when the tile has no probe yet.
 bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &error);
+/// Every tile's probe, in the manifest's order (a tile without one has none of its fields set).
+bool ReadProbes(const std::string &dir, const Manifest &manifest, std::vector<TileProbe> &probes, std::string &error);
 
-/// Reads every tile's probe, shares the target and writes SharesPath(dir).
-bool WriteShares(const std::string &dir, const Manifest &manifest, std::vector<TileShare> &shares, std::string &error);
-/// The share of tile `id`, from SharesPath(dir); an error says to run probe and share first.
-bool ReadShare(const std::string &dir, int id, TileShare &share, std::string &error);
+/// DecideShares on the probes in `dir`, with the parameters of the manifest.
+bool DecideFromProbes(const std::string &dir, const Manifest &manifest, ShareDecision &decision, std::string &error);
+
+/// The tiles whose probe lacks what the decision needs; none once the shares are written.
+bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<int> &ids, std::string &error);
+
+/// Writes SharesPath(dir) from the probes when they allow it and it does not exist yet (`written`
+/// then true; the shares adjusted so far are not lost to a second `gstile share`). `decision`
+/// receives the shares, or what the probes still need.
+bool WriteShares(const std::string &dir, const Manifest &manifest, ShareDecision &decision, bool &written,
+                 std::string &error);
+bool ReadShares(const std::string &dir, Shares &shares, std::string &error);
+/// The level and the share of tile `id`, from SharesPath(dir); an error says to probe and share first.
+bool ReadShare(const std::string &dir, int id, int &level, TileShare &share, std::string &error);
 
 std::string SharesPath(const std::string &dir);
 

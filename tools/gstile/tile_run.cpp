@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <limits>
 
@@ -125,13 +126,13 @@ struct ResampledTile
     std::vector<bool> owned;
 };
 
-/// Resamples `tile` with the manifest's parameters, to `targetCount` clusters when it is not 0.
-bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEntry &tile, std::uint64_t targetCount,
-                  ResampledTile &out, std::string &error)
+/// Resamples `tile` with the manifest's parameters as `adapt` changes them.
+bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEntry &tile,
+                  const std::function<void(ResamplingParams &)> &adapt, ResampledTile &out, std::string &error)
 {
     ResamplingParams param;
     if (!LoadTile(dir, tile, out.mesh, out.indices, param, manifest, error)) return false;
-    param.targetCount = int(targetCount);
+    adapt(param);
     try {
         out.result = ResamplePointSet(out.mesh, param);
     } catch (const std::exception &e) {
@@ -140,6 +141,16 @@ bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEn
     }
     out.owned = OwnedSurfels(out.result, out.indices, tile.corePoints);
     return true;
+}
+
+/// The run of a share: at the shared level, to the share's count.
+std::function<void(ResamplingParams &)> AtShare(int level, std::uint64_t count)
+{
+    return [level, count](ResamplingParams &param) {
+        param.subdivisionLevel = level;
+        param.searchLevel = false;
+        param.targetCount = int(count);
+    };
 }
 
 /// The manifest's entry of tile `id`, or null with an error naming the tile.
@@ -153,20 +164,96 @@ const TileEntry *FindTile(const std::string &dir, const Manifest &manifest, int 
 
 } // namespace
 
-bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, TileProbe &probe, std::string &error)
+namespace {
+
+/// The split record of a tile resampled to a count without exchanges: for each split, whether
+/// the cluster it added is owned, found by undoing the splits from the last (a split's two parts
+/// were one cluster, anchored at the smaller of their anchors).
+std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoints)
 {
+    const ResamplingResult &result = tile.result;
+    std::vector<std::size_t> anchor(result.surfels.size(), tile.indices.size()); // as OwnedSurfels
+    for (std::size_t v = 0; v < tile.indices.size(); ++v) {
+        const int s = result.representative[v];
+        if (s < 0) continue;
+        std::size_t &a = anchor[std::size_t(s)];
+        if (a == tile.indices.size() || tile.indices[v] < tile.indices[a]) a = v;
+    }
+    std::vector<SplitKey> keys(result.targetSplits.size());
+    for (std::size_t k = keys.size(); k-- > 0;) {
+        const CountSplit &split = result.targetSplits[k];
+        const std::size_t kept = anchor[std::size_t(split.cluster)], added = anchor[std::size_t(split.added)];
+        const bool addedFirst = added != tile.indices.size() && (kept == tile.indices.size() || tile.indices[added] < tile.indices[kept]);
+        // The part holding the whole cluster's anchor keeps the cluster's ownership; the other is the one added.
+        const std::size_t other = addedFirst ? kept : added;
+        keys[k] = {split.error, split.size, other < corePoints};
+        anchor[std::size_t(split.cluster)] = addedFirst ? added : kept;
+    }
+    return keys;
+}
+
+} // namespace
+
+bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFigures &figures, std::string &error)
+{
+    const auto start = std::chrono::steady_clock::now();
+    figures = ProbeFigures();
+    figures.id = id;
     const TileEntry *entry = FindTile(dir, manifest, id, error);
     if (entry == nullptr) return false;
-    ResampledTile tile;
-    bool ok = ResampleTile(dir, manifest, *entry, 0, tile, error);
-    if (ok) {
-        probe.id = id;
-        probe.clusters = tile.owned.size();
-        probe.owned = std::uint64_t(std::count(tile.owned.begin(), tile.owned.end(), true));
-        ok = WriteProbe(dir, probe, error);
+    ShareDecision decision;
+    TileProbe probe;
+    bool ok = DecideFromProbes(dir, manifest, decision, error) && (ReadProbe(dir, id, probe, error) || error.empty());
+    if (!ok || decision.shared || Satisfies(probe, decision.need)) {
+        if (!ok) error = "tile " + std::to_string(id) + ": " + error;
+        return ok;
     }
+    const ProbeNeed need = figures.need = decision.need;
+    ResampledTile tile;
+    if (need.splitCap == 0) {
+        ok = ResampleTile(dir, manifest, *entry, [&need](ResamplingParams &param) {
+            param.subdivisionLevel = need.level;
+            param.fitOffsets = false; // the counts are the clusters'
+        }, tile, error);
+        if (ok) {
+            figures.counts = {need.level, tile.owned.size(), std::uint64_t(std::count(tile.owned.begin(), tile.owned.end(), true))};
+            probe.levels.push_back(figures.counts);
+        }
+    } else {
+        const std::uint64_t points = entry->corePoints + entry->haloPoints;
+        const std::uint64_t count = std::min(points, probe.At(need.level)->clusters + need.splitCap);
+        ok = ResampleTile(dir, manifest, *entry, [&](ResamplingParams &param) {
+            AtShare(need.level, count)(param);
+            param.maxErrorExchanges = 0; // the splits alone, recorded
+            param.fitOffsets = false;
+        }, tile, error);
+        if (ok) {
+            probe.splitLevel = need.level;
+            probe.splitCap = need.splitCap;
+            probe.splits = SplitKeys(tile, entry->corePoints);
+            figures.splits = probe.splits.size();
+        }
+    }
+    ok = ok && WriteProbe(dir, probe, error);
     if (!ok) error = "tile " + std::to_string(id) + ": " + error;
+    figures.probed = ok;
+    figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return ok;
+}
+
+std::string ProbeLine(const ProbeFigures &f, std::size_t position, std::size_t tileCount)
+{
+    char line[200];
+    if (!f.probed)
+        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d has what the share needs", position, tileCount, f.id);
+    else if (f.need.splitCap == 0)
+        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, level %d: %llu clusters, %llu owned, %.2f s", position,
+                      tileCount, f.id, f.need.level, (unsigned long long)f.counts.clusters,
+                      (unsigned long long)f.counts.owned, f.seconds);
+    else
+        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, level %d: %zu splits recorded of %llu asked, %.2f s",
+                      position, tileCount, f.id, f.need.level, f.splits, (unsigned long long)f.need.splitCap, f.seconds);
+    return line;
 }
 
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error)
@@ -176,14 +263,16 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     const TileEntry *entry = FindTile(dir, manifest, id, error);
     if (entry == nullptr) return false;
     TileShare share;
-    if (manifest.targetCount > 0 && !ReadShare(dir, id, share, error)) {
+    int level = 0;
+    if (manifest.targetCount > 0 && !ReadShare(dir, id, level, share, error)) {
         error = name + ": " + error;
         return false;
     }
     ResampledTile tile;
     // With a target, a tile whose share is 0 keeps nothing and needs no run.
     const bool run = manifest.targetCount == 0 || share.target > 0;
-    if (run && !ResampleTile(dir, manifest, *entry, share.target, tile, error)) {
+    const auto adapt = manifest.targetCount > 0 ? AtShare(level, share.target) : [](ResamplingParams &) {};
+    if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;
         return false;
     }

@@ -51,8 +51,24 @@ TileBorder BorderOf(const vcg::gaussphere::ResamplingResult &result, const std::
 /// (WriteOutcome). Errors name the tile.
 bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFigures &figures, std::string &error);
 
-/// With a target: resamples tile `id` at the level and writes its probe (target_share.h).
-bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, TileProbe &probe, std::string &error);
+/// What a probe of a tile found.
+struct ProbeFigures
+{
+    int id = 0;
+    bool probed = false;  ///< false: the tile's probe held what the share needs already
+    ProbeNeed need;
+    LevelCount counts;    ///< need.splitCap == 0: the counts at need.level
+    std::size_t splits = 0; ///< else: the splits recorded
+    double seconds = 0;
+};
+
+/// With a target: resamples tile `id` as the probes so far need (target_share.h: its counts at a
+/// level, or its splits at the level) and adds what it found to its probe; nothing when the tile
+/// has it already or the shares are decided.
+bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFigures &figures, std::string &error);
+
+/// One line of figures for a probed tile, the `position`-th (from 1) of `tileCount`.
+std::string ProbeLine(const ProbeFigures &figures, std::size_t position, std::size_t tileCount);
 
 /// One line of figures for a finished tile, the `position`-th (from 1) of `tileCount`.
 std::string FiguresLine(const TileRunFigures &figures, std::size_t position, std::size_t tileCount);

@@ -11,7 +11,8 @@
 //   4. one elliptical surfel per cluster                            surfels/surfel_generation.h
 //   size control beyond the paper, one mode a run (SizeControl):    size_control/
 //      Level: the clustering of step 3 as it is
-//      TargetCount: level search, splits or merges                  size_control/cluster_refinement.h
+//      TargetCount: level search,                                   size_control/level_search.h
+//                   splits or merges                                size_control/cluster_refinement.h
 //                   and exchanges for the largest error             size_control/max_error_exchange.h
 //      ErrorBound: splits until every point is within the bound    size_control/surface_error_bound.h
 //   surfels fitted to the blended surface                           surfels/surfel_offset.h
@@ -44,6 +45,7 @@
 #include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
 #include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
+#include <vcg_ext/gaussphere/size_control/level_search.h>
 #include <vcg_ext/gaussphere/clustering/clustering.h>
 #include <vcg_ext/gaussphere/surfels/crease_blend.h>
 #include <vcg_ext/gaussphere/support/flat_vector.h>
@@ -124,6 +126,9 @@ struct ResamplingResult
 {
     std::vector<Surfel> surfels;
     IndexArray representative;       ///< per input vertex: its surfel, or -1 if skipped
+    /// TargetCount without exchanges: the splits that brought the level's clusters up to the count,
+    /// as surfel indices (the clusters keep their index from the split to the surfels).
+    std::vector<CountSplit> targetSplits;
     ResamplingStats stats;
 };
 
@@ -362,35 +367,18 @@ inline void Adopt(LevelClustering &&chosen, Run &run)
     run.stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
 }
 
-/// The count grows with the level: the finest level in [2, 256] whose count stays at or below
-/// `target` (doubling from the parameter's level, then bisection), whose clusters splitting
-/// brings up to the target; or, when the next level gives at most tuning.mergeWithin times the
-/// target, or even level 2 gives more, that level, whose clusters merging brings down to it:
-/// merging a finer level's most similar neighbours keeps its small clusters at creases.
+/// The clusters of the level LevelSearch chooses for `target` (size_control/level_search.h).
 inline LevelClustering SearchLevel(Run &run, int target)
 {
-    const int maxLevel = 256;
-    int good = 0, bad = 0; // finest level known to fit, coarsest known not to
+    LevelSearch search(std::uint64_t(target), run.param.subdivisionLevel);
     LevelClustering fitting, coarsestTooMany;
-    const auto consider = [&](LevelClustering &&r) {
-        if (r.clusters.clusterCount <= target) {
-            if (r.level > good) { good = r.level; fitting = std::move(r); }
-        } else if (!bad || r.level < bad) {
-            bad = r.level;
-            coarsestTooMany = std::move(r);
-        }
-    };
-    consider(ClusterAtLevel(run, run.param.subdivisionLevel));
-    while (true) {
-        int next;
-        if (good && bad) { if (bad - good <= 1) break; next = (good + bad) / 2; }
-        else if (good) { if (good == maxLevel) break; next = std::min(maxLevel, 2 * good); }
-        else { if (bad == 2) break; next = std::max(2, bad / 2); }
-        Report(run.cb, std::min(75, 45 + 4 * run.stats.levelsTried), "Gaussian sphere resampling: searching the level");
-        consider(ClusterAtLevel(run, next));
+    while (const int level = search.Next()) {
+        if (run.stats.levelsTried > 0)
+            Report(run.cb, std::min(75, 45 + 4 * run.stats.levelsTried), "Gaussian sphere resampling: searching the level");
+        LevelClustering r = ClusterAtLevel(run, level);
+        (search.Tell(std::uint64_t(r.clusters.clusterCount)) ? fitting : coarsestTooMany) = std::move(r);
     }
-    const bool mergeDown = bad && coarsestTooMany.clusters.clusterCount <= run.param.tuning.mergeWithin * target;
-    return std::move(good && !mergeDown ? fitting : coarsestTooMany);
+    return std::move(search.Merges(run.param.tuning.mergeWithin) ? coarsestTooMany : fitting);
 }
 
 /// The surfels whose blend is narrowed, read off the surfels (counted where they were made).
@@ -456,19 +444,20 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     stats.secondsExchanges = run.timer.Lap();
 }
 
-/// SizeControl::TargetCount: the level found by SearchLevel, its clusters split or merged to
-/// the count exactly, then exchanges of clusters that lower the largest error at that count.
-inline std::vector<Surfel> ResampleToCount(Run &run)
+/// SizeControl::TargetCount: the level found by SearchLevel (or the parameter's, searchLevel
+/// off), its clusters split or merged to the count exactly, then exchanges of clusters that lower
+/// the largest error at that count. `splits` receives the splits when there are no exchanges.
+inline std::vector<Surfel> ResampleToCount(Run &run, std::vector<CountSplit> &splits)
 {
     ResamplingStats &stats = run.stats;
     const int target = stats.targetCount = run.param.TargetFor(int(run.points.size()));
-    Adopt(SearchLevel(run, target), run);
+    Adopt(run.param.searchLevel ? SearchLevel(run, target) : ClusterAtLevel(run, run.param.subdivisionLevel), run);
     if (target > run.clusters.clusterCount) {
         Report(run.cb, 80, "Gaussian sphere resampling: refining clusters");
         ClusterRefiner refiner(run.points, run.normals, run.clusters, 1.0 / (run.weightWidth * run.weightWidth));
         stats.splitsForTarget = refiner.SplitToCount(target, [&run](double done) {
             return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: splitting clusters");
-        });
+        }, run.param.maxErrorExchanges > 0 ? nullptr : &splits);
         if (stats.splitsForTarget == kRefinementCancelled) throw ResamplingCancelled();
     }
     // Reads the crease narrowing from every slot of the graph: made before merging cuts it.
@@ -582,7 +571,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
     switch (result.stats.sizeMode) {
     case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
-    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run); break;
+    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, result.targetSplits); break;
     case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
     }
     detail::Finish(run, result);

@@ -68,6 +68,9 @@ struct ResamplingParams
     double normalizationThreshold = 6.0; ///< clusters with lambda1/lambda2 above it are split
     double weightWidth = 0;        ///< h of the surfel normal weights, in model units (0 = 1 % of the diagonal)
     int maxErrorExchanges = 16;    ///< TargetCount: exchanges of clusters that lower the largest error (0 = off)
+    /// TargetCount: search the level (false: split or merge the clusters of subdivisionLevel). Not a
+    /// user's parameter: the tiles of a tiled run (tools/gstile) take the level the whole input gives.
+    bool searchLevel = true;
 
     ResamplingTuning tuning;
 

@@ -65,6 +65,16 @@ inline int *SplitMembers(const PointArray &points, const PointArray &normals, in
 /// What SplitToCount and MergeToCount return when their `progress` stopped them.
 constexpr int kRefinementCancelled = -1;
 
+/// One split of SplitToCount, in the order made: the cluster split, the cluster it added, and the
+/// split's priority (the L2,1 error of the cluster split, then its size). The priorities never
+/// rise along the sequence: each part's error is at most the error of the cluster it came from.
+struct CountSplit
+{
+    int cluster = 0, added = 0;
+    double error = 0;
+    int size = 0;
+};
+
 class ClusterRefiner
 {
 public:
@@ -81,10 +91,12 @@ public:
     int Count() const { return int(range_.size()); }
 
     /// Splits the clusters with the largest L2,1 error until there are `target` clusters
-    /// (or no cluster can be split). Returns the number of splits. `progress(fraction)`, if
-    /// given, is called every few thousand splits; when it returns false splitting stops (the
-    /// splits made so far stay) and SplitToCount returns kRefinementCancelled.
-    int SplitToCount(int target, const std::function<bool(double)> &progress = nullptr)
+    /// (or no cluster can be split). Returns the number of splits; `record`, if given, receives
+    /// them in order. `progress(fraction)`, if given, is called every few thousand splits; when it
+    /// returns false splitting stops (the splits made so far stay) and SplitToCount returns
+    /// kRefinementCancelled.
+    int SplitToCount(int target, const std::function<bool(double)> &progress = nullptr,
+                     std::vector<CountSplit> *record = nullptr)
     {
         typedef std::pair<std::pair<double, int>, int> Entry; // ((error, size), cluster)
         std::priority_queue<Entry> queue;
@@ -100,10 +112,12 @@ public:
                 if (!progress(double(splits) / needed)) return kRefinementCancelled;
                 nextReport = splits + 4096;
             }
-            const int c = queue.top().second;
+            const Entry top = queue.top();
             queue.pop();
+            const int c = top.second;
             const int added = Split(c);
             if (added < 0) continue;
+            if (record) record->push_back({c, added, top.first.first, top.first.second});
             ++splits;
             push(c);
             push(added);
