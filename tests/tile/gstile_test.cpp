@@ -402,6 +402,49 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
     EXPECT_FALSE(Satisfies(short_[0], more.need));
 }
 
+// A probe file is read back exactly, and one damaged (cut short, its split records of unequal
+// length, priorities rising or not finite) is refused with the file named.
+TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
+{
+    const std::string dir = ::testing::TempDir() + "gstile_probe_file";
+    ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+    TileProbe probe;
+    probe.id = 3;
+    probe.levels = {{8, 120, 70}, {4, 40, 25}};
+    probe.splitLevel = 4;
+    probe.splitCap = 6;
+    probe.splits = {{0.75, 9, true}, {0.5, 7, false}, {0.5, 5, true}};
+    std::string error;
+    ASSERT_TRUE(WriteProbe(dir, probe, error)) << error;
+    TileProbe back;
+    ASSERT_TRUE(ReadProbe(dir, 3, back, error)) << error;
+    ASSERT_EQ(back.levels.size(), 2u);
+    EXPECT_EQ(back.At(4)->owned, 25u);
+    EXPECT_EQ(back.At(6), nullptr);
+    ASSERT_EQ(back.splits.size(), 3u);
+    EXPECT_EQ(back.splits[2].size, 5);
+    EXPECT_TRUE(back.splits[2].addsOwned);
+    EXPECT_FALSE(ReadProbe(dir, 4, back, error)) << "no probe yet";
+    EXPECT_TRUE(error.empty()) << "is not an error";
+
+    const std::string path = TilePath(dir, 3, ".probe");
+    const auto refused = [&](const std::string &text, const char *why) {
+        std::ofstream(path, std::ios::trunc) << text;
+        std::string reason;
+        EXPECT_FALSE(ReadProbe(dir, 3, back, reason)) << why;
+        EXPECT_NE(reason.find(path), std::string::npos) << why << ": " << reason;
+    };
+    refused("{\"levels\": [[8, 120", "cut short");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.4], "
+            "\"split_size\": [3], \"split_adds_owned\": [1, 0]}", "lengths differ");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.9], "
+            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "a priority rises");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 1, \"split_error\": [0.5, 0.4], "
+            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "more splits than the cap");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [\"nan\"], "
+            "\"split_size\": [3], \"split_adds_owned\": [1]}", "not a number");
+}
+
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
 {
     TileShare share;
