@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
