@@ -39,9 +39,9 @@ const char *const kUsage =
     "(default 24); run resamples one tile and keeps the surfels it owns; merge concatenates them;\n"
     "all does the three in turn, the tiles in DIR (default OUTPUT.tiles). With --target or\n"
     "--percentage, probe runs the tiles --to-probe lists (again, until it lists none: the level\n"
-    "search, then the priorities of the splits there) and share divides the count as the whole run\n"
-    "would spend it;\n"
-    "adjust gives the tiles that missed their share a new count, up to 3 times a tile.\n"
+    "search, then the priorities of the splits there), share divides the count as the whole run\n"
+    "would spend it, and adjust gives the tiles that missed their share a new count, up to 3 times\n"
+    "a tile.\n"
     "gsresample's options:\n";
 
 struct UsageError
