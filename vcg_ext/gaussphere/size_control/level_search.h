@@ -21,7 +21,7 @@ namespace gaussphere {
 class LevelSearch
 {
 public:
-    static constexpr int kMinLevel = 2, kMaxLevel = 256;
+    enum : int { kMinLevel = 2, kMaxLevel = 256 }; // not static members: C++14 would need their definitions
 
     /// \pre target >= 1, startLevel in [kMinLevel, kMaxLevel].
     LevelSearch(std::uint64_t target, int startLevel) : target_(target), next_(startLevel) {}
@@ -56,8 +56,8 @@ private:
     int Following() const
     {
         if (good_ != 0 && bad_ != 0) return bad_ - good_ <= 1 ? 0 : (good_ + bad_) / 2;
-        if (good_ != 0) return good_ == kMaxLevel ? 0 : std::min(kMaxLevel, 2 * good_);
-        return bad_ == kMinLevel ? 0 : std::max(kMinLevel, bad_ / 2);
+        if (good_ != 0) return good_ == kMaxLevel ? 0 : std::min<int>(kMaxLevel, 2 * good_);
+        return bad_ == kMinLevel ? 0 : std::max<int>(kMinLevel, bad_ / 2);
     }
 
     std::uint64_t target_;
