@@ -338,26 +338,46 @@ TEST(TargetShare, TheProbesFollowTheLevelSearchOfTheTilesSummedCounts)
     std::vector<TileProbe> probes(2);
     ShareDecision d = DecideShares(manifest, 8, 1.15, probes);
     ASSERT_FALSE(d.shared);
-    EXPECT_EQ(d.need.level, 8) << "the search starts at the level asked for";
-    EXPECT_EQ(d.need.splitCap, 0u);
+    ASSERT_EQ(d.needs.size(), 2u);
+    EXPECT_EQ(d.needs[0].level, 8) << "the search starts at the level asked for";
+    EXPECT_EQ(d.needs[0].splitCap, 0u);
     ProbeLevel(probes[0], 8, 150);
     d = DecideShares(manifest, 8, 1.15, probes);
-    EXPECT_EQ(d.need.level, 8) << "until every tile has it";
+    EXPECT_EQ(d.needs[1].level, 8) << "until every tile has it";
+    EXPECT_TRUE(Satisfies(probes[0], d.needs[0]));
     ProbeLevel(probes[1], 8, 50); // 200 > 100: coarser
     d = DecideShares(manifest, 8, 1.15, probes);
-    EXPECT_EQ(d.need.level, 4);
+    EXPECT_EQ(d.needs[0].level, 4);
     ProbeLevel(probes[0], 4, 60);
     ProbeLevel(probes[1], 4, 20); // 80 fits: between 4 and 8
     d = DecideShares(manifest, 8, 1.15, probes);
-    EXPECT_EQ(d.need.level, 6);
+    EXPECT_EQ(d.needs[0].level, 6);
     ProbeLevel(probes[0], 6, 90);
     ProbeLevel(probes[1], 6, 30); // 120 > 100
     ProbeLevel(probes[0], 5, 70);
     ProbeLevel(probes[1], 5, 25); // 95 fits; 6 gives 1.2 x the target, beyond 1.15: split level 5
     d = DecideShares(manifest, 8, 1.15, probes);
     ASSERT_FALSE(d.shared);
-    EXPECT_EQ(d.need.level, 5);
-    EXPECT_EQ(d.need.splitCap, 10u) << "twice the 5 clusters missing";
+    EXPECT_EQ(d.needs[0].level, 5);
+    EXPECT_EQ(d.needs[0].splitCap, kMinSplitCap) << "a few missing: the fewest a tile records";
+    const Manifest many = TwoTiles(2000);
+    ProbeLevel(probes[0], 16, 1200);
+    ProbeLevel(probes[1], 16, 400);
+    ProbeLevel(probes[0], 32, 3000);
+    ProbeLevel(probes[1], 32, 1000);
+    ProbeLevel(probes[0], 24, 2000);
+    ProbeLevel(probes[1], 24, 600);
+    ProbeLevel(probes[0], 20, 1600);
+    ProbeLevel(probes[1], 20, 500);
+    ProbeLevel(probes[0], 18, 1600);
+    ProbeLevel(probes[1], 18, 500);
+    ProbeLevel(probes[0], 17, 1500);
+    ProbeLevel(probes[1], 17, 520); // 2,020: only level 16 fits, with 1,600: 400 missing, owned 3 : 1
+    d = DecideShares(many, 16, 1.0, probes);
+    ASSERT_FALSE(d.shared);
+    EXPECT_EQ(d.needs[0].level, 16);
+    EXPECT_EQ(d.needs[0].splitCap, 1200u) << "twice its 300 of the 400 missing, times 2 made per owned";
+    EXPECT_EQ(d.needs[1].splitCap, 400u) << "twice its 100, times 2";
 
     // At 1.25 the level giving 120 is merged down instead, by owned counts 90 : 30.
     d = DecideShares(manifest, 8, 1.25, probes);
@@ -377,7 +397,7 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
         ProbeLevel(probes[t], 4, 30);
         ProbeLevel(probes[t], 3, 20);
         probes[t].splitLevel = 2;
-        probes[t].splitCap = 8;
+        probes[t].splitCap = kMinSplitCap;
     }
     // Tile 5's priorities fall fast, tile 6's slowly: the four owned splits missing go 1 : 3.
     probes[0].splits = {{9.0, 10, true}, {4.0, 6, false}, {1.0, 4, true}, {0.5, 3, true}};
@@ -390,20 +410,21 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
     EXPECT_EQ(d.shares.tiles[0].target, 6u + 1u);
     EXPECT_EQ(d.shares.tiles[1].target, 6u + 4u) << "the halo's split at 6.0 runs too";
 
-    // A record cut short by its cap, the owned splits in it too few: twice the longest record.
-    std::vector<TileProbe> short_ = probes;
-    short_[0].splits = {{9.0, 10, false}, {8.5, 9, false}, {8.4, 9, false}, {8.3, 9, false},
-                        {8.2, 9, false}, {8.1, 9, false}, {8.0, 9, false}, {7.9, 9, false}};
-    short_[1].splits = {{1.0, 2, true}};
-    ShareDecision more = DecideShares(manifest, 2, 1.15, short_);
+    // A record cut short by its cap and taken whole (its splits add halo clusters only): it may
+    // hide splits above the threshold, so that tile records twice as many.
+    std::vector<TileProbe> cut = probes;
+    cut[0].splits.clear();
+    for (std::uint64_t k = 0; k < kMinSplitCap; ++k) cut[0].splits.push_back({9.0 - 0.01 * double(k), 9, false});
+    cut[1].splits = {{1.0, 2, true}};
+    const ShareDecision more = DecideShares(manifest, 2, 1.15, cut);
     ASSERT_FALSE(more.shared);
-    EXPECT_EQ(more.need.splitCap, 16u);
-    EXPECT_TRUE(Satisfies(short_[1], more.need)) << "a record shorter than its cap holds all the tile's splits";
-    EXPECT_FALSE(Satisfies(short_[0], more.need));
+    EXPECT_EQ(more.needs[0].splitCap, 2 * kMinSplitCap);
+    EXPECT_FALSE(Satisfies(cut[0], more.needs[0]));
+    EXPECT_TRUE(Satisfies(cut[1], more.needs[1])) << "a record shorter than its cap holds all the tile's splits";
 }
 
 // A probe file is read back exactly, and one damaged (cut short, its split records of unequal
-// length, priorities rising or not finite) is refused with the file named.
+// length or rising, counts out of range) is refused with the file named.
 TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
 {
     const std::string dir = ::testing::TempDir() + "gstile_probe_file";
@@ -441,8 +462,16 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
             "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "a priority rises");
     refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 1, \"split_error\": [0.5, 0.4], "
             "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "more splits than the cap");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [\"nan\"], "
-            "\"split_size\": [3], \"split_adds_owned\": [1]}", "not a number");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.5], "
+            "\"split_size\": [3, 4], \"split_adds_owned\": [1, 0]}", "a size rises at an equal error");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [1e999], "
+            "\"split_size\": [3], \"split_adds_owned\": [1]}", "a number beyond double");
+    refused("{\"levels\": [[8, 10, 12]], \"split_level\": 0, \"split_cap\": 0, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": []}", "more owned than made");
+    refused("{\"levels\": [[300, 10, 5]], \"split_level\": 0, \"split_cap\": 0, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": []}", "a level beyond 256");
+    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 18446744073709551615, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": []}", "a cap that would overflow when doubled");
 }
 
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)

@@ -117,13 +117,9 @@ int WriteAndReportShares(const std::string &dir, const Manifest &manifest)
     bool written = false;
     std::string error;
     if (!WriteShares(dir, manifest, decision, written, error)) return Fail(error);
+    if (!decision.shared)
+        return Fail("the probes are not complete: probe the tiles `gstile tiles " + dir + " --to-probe` lists first");
     char line[200];
-    if (!decision.shared) {
-        std::snprintf(line, sizeof line, "[share] not yet: the tiles `gstile tiles %s --to-probe` lists need a probe",
-                      dir.c_str());
-        PrintLine(line);
-        return 0;
-    }
     std::uint64_t runCount = 0;
     for (const TileShare &share : decision.shares.tiles) runCount += share.target;
     std::snprintf(line, sizeof line, "[share] %llu surfels over %zu tiles at level %d (%llu made with halos)%s",

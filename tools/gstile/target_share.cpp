@@ -19,6 +19,11 @@ namespace gstile {
 
 namespace {
 
+/// Bound on the counts a probe file may hold: far beyond any scan, far below overflow when doubled.
+constexpr std::uint64_t kMaxCount = std::uint64_t(1) << 48;
+
+using vcg::gaussphere::LevelSearch;
+
 constexpr const char *kRunProbeAndShare =
     "with a target, run `gstile probe` on the tiles `gstile tiles DIR --to-probe` lists until it lists none, then `gstile share`";
 
@@ -72,9 +77,9 @@ std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<
 namespace {
 
 /// The tiles' splits at the level taken in priority order (ties by tile, then by order within
-/// it) until the owned clusters reach the target: `taken` and `addedOwned` per tile. False when
-/// the splits recorded run out first.
-bool TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::uint64_t target,
+/// it) until the owned clusters reach the target, or the records run out: `taken` and
+/// `addedOwned` per tile.
+void TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::uint64_t target,
                 std::vector<std::uint64_t> &taken, std::vector<std::uint64_t> &addedOwned)
 {
     struct Entry
@@ -85,7 +90,7 @@ bool TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::
     std::vector<Entry> entries;
     for (std::size_t t = 0; t < probes.size(); ++t)
         for (std::size_t k = 0; k < probes[t].splits.size(); ++k) entries.push_back({&probes[t].splits[k], t, k});
-    // Along a tile's record the priorities never rise (CountSplit), so what the order takes of each
+    // Along a tile's record the priorities never rise (SplitKey), so what the order takes of each
     // tile is a prefix of its record: the splits its run at the count makes.
     std::sort(entries.begin(), entries.end(), [](const Entry &a, const Entry &b) {
         if (a.key->error != b.key->error) return a.key->error > b.key->error;
@@ -101,7 +106,6 @@ bool TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::
             ++owned;
         }
     }
-    return owned >= target;
 }
 
 } // namespace
@@ -110,13 +114,15 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
                            const std::vector<TileProbe> &probes)
 {
     ShareDecision decision;
-    const auto lacking = [&probes](const ProbeNeed &need) {
-        return std::any_of(probes.begin(), probes.end(), [&need](const TileProbe &p) { return !Satisfies(p, need); });
+    const auto lacking = [&probes, &decision]() {
+        for (std::size_t t = 0; t < probes.size(); ++t)
+            if (!Satisfies(probes[t], decision.needs[t])) return true;
+        return false;
     };
     vcg::gaussphere::LevelSearch search(manifest.targetCount, startLevel);
     while (const int level = search.Next()) {
-        decision.need = {level, 0};
-        if (lacking(decision.need)) return decision;
+        decision.needs.assign(probes.size(), ProbeNeed{level, 0});
+        if (lacking()) return decision;
         std::uint64_t owned = 0;
         for (const TileProbe &p : probes) owned += p.At(level)->owned;
         search.Tell(owned);
@@ -135,17 +141,27 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
         decision.shared = true;
         return decision;
     }
-    // Up to the target by splits. A tile's record interleaves splits of clusters it owns with
-    // splits of its halo's: twice the count missing, and twice the longest record when too few.
-    decision.need = {level, 2 * (manifest.targetCount - owned)};
-    if (lacking(decision.need)) return decision;
-    std::vector<std::uint64_t> taken, addedOwned;
-    if (!TakeSplits(probes, owned, manifest.targetCount, taken, addedOwned)) {
-        std::uint64_t longest = 0;
-        for (const TileProbe &p : probes) longest = std::max(longest, p.splitCap);
-        decision.need.splitCap = std::max(decision.need.splitCap, 2 * longest);
-        if (lacking(decision.need)) return decision;
+    const std::uint64_t missing = manifest.targetCount - owned;
+    decision.needs.clear();
+    for (std::size_t t = 0; t < probes.size(); ++t) {
+        // Its part of the missing clusters (by its owned ones) times its made-to-owned ratio.
+        const unsigned __int128 part = owned ? ((unsigned __int128)missing * counts[t].clusters + owned - 1) / owned : missing;
+        std::uint64_t cap = std::max(kMinSplitCap, std::uint64_t(std::min<unsigned __int128>(2 * part, kMaxCount)));
+        if (probes[t].splitLevel == level) cap = std::max(cap, probes[t].splitCap); // grown before
+        decision.needs.push_back({level, cap});
     }
+    if (lacking()) return decision;
+    std::vector<std::uint64_t> taken, addedOwned;
+    TakeSplits(probes, owned, manifest.targetCount, taken, addedOwned);
+    bool grows = false;
+    for (std::size_t t = 0; t < probes.size(); ++t) {
+        const TileProbe &p = probes[t];
+        if (p.splits.size() == p.splitCap && taken[t] == p.splits.size()) {
+            decision.needs[t].splitCap = 2 * p.splitCap;
+            grows = true;
+        }
+    }
+    if (grows) return decision;
     for (std::size_t t = 0; t < probes.size(); ++t) {
         TileShare share;
         share.id = manifest.tiles[t].id;
@@ -186,17 +202,24 @@ bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &er
     json j;
     if (!ReadJsonFile(path, kRunProbeAndShare, j, error)) return false;
     try {
-        for (const json &c : j.at("levels"))
-            probe.levels.push_back({c.at(0).get<int>(), c.at(1).get<std::uint64_t>(), c.at(2).get<std::uint64_t>()});
+        for (const json &c : j.at("levels")) {
+            const LevelCount count{c.at(0).get<int>(), c.at(1).get<std::uint64_t>(), c.at(2).get<std::uint64_t>()};
+            if (count.level < LevelSearch::kMinLevel || count.level > LevelSearch::kMaxLevel ||
+                count.owned > count.clusters || count.clusters > kMaxCount)
+                throw std::runtime_error("a level's counts are out of range");
+            probe.levels.push_back(count);
+        }
         probe.splitLevel = j.at("split_level").get<int>();
         probe.splitCap = j.at("split_cap").get<std::uint64_t>();
+        if (probe.splitCap > kMaxCount) throw std::runtime_error("the split cap is out of range");
         const json &errors = j.at("split_error"), &sizes = j.at("split_size"), &addsOwned = j.at("split_adds_owned");
         if (errors.size() != sizes.size() || errors.size() != addsOwned.size() || errors.size() > probe.splitCap)
             throw std::runtime_error("the split records differ in length or exceed their cap");
         for (std::size_t k = 0; k < errors.size(); ++k) {
             const SplitKey key{errors[k].get<double>(), sizes[k].get<int>(), addsOwned[k].get<int>() != 0};
-            if (!std::isfinite(key.error) || (k > 0 && key.error > probe.splits.back().error))
-                throw std::runtime_error("the split priorities are not finite and falling");
+            const bool rises = k > 0 && (key.error > probe.splits.back().error ||
+                                         (key.error == probe.splits.back().error && key.size > probe.splits.back().size));
+            if (rises) throw std::runtime_error("the split priorities rise"); // JSON numbers are finite
             probe.splits.push_back(key);
         }
     } catch (const std::exception &e) {
@@ -214,10 +237,10 @@ bool ReadProbes(const std::string &dir, const Manifest &manifest, std::vector<Ti
     return true;
 }
 
-bool DecideFromProbes(const std::string &dir, const Manifest &manifest, ShareDecision &decision, std::string &error)
+bool DecideFromProbes(const std::string &dir, const Manifest &manifest, std::vector<TileProbe> &probes,
+                      ShareDecision &decision, std::string &error)
 {
     vcg::gaussphere::ResamplingParams param;
-    std::vector<TileProbe> probes;
     if (!TileParams(manifest, 0, param, error) || !ReadProbes(dir, manifest, probes, error)) return false;
     decision = DecideShares(manifest, param.subdivisionLevel, param.tuning.mergeWithin, probes);
     return true;
@@ -229,10 +252,10 @@ bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<
     if (std::ifstream(SharesPath(dir))) return true;
     std::vector<TileProbe> probes;
     ShareDecision decision;
-    if (!ReadProbes(dir, manifest, probes, error) || !DecideFromProbes(dir, manifest, decision, error)) return false;
+    if (!DecideFromProbes(dir, manifest, probes, decision, error)) return false;
     if (decision.shared) return true;
     for (std::size_t t = 0; t < probes.size(); ++t)
-        if (!Satisfies(probes[t], decision.need)) ids.push_back(manifest.tiles[t].id);
+        if (!Satisfies(probes[t], decision.needs[t])) ids.push_back(manifest.tiles[t].id);
     return true;
 }
 
@@ -296,7 +319,8 @@ bool WriteShares(const std::string &dir, const Manifest &manifest, ShareDecision
         decision.shared = true;
         return ReadShares(dir, decision.shares, error);
     }
-    if (!DecideFromProbes(dir, manifest, decision, error)) return false;
+    std::vector<TileProbe> probes;
+    if (!DecideFromProbes(dir, manifest, probes, decision, error)) return false;
     if (!decision.shared) return true;
     written = WriteShareList(dir, decision.shares, error);
     return written;

@@ -43,7 +43,9 @@ struct LevelCount
 };
 
 /// One of a tile's splits towards a count (vcg::gaussphere::CountSplit): its priority, and whether
-/// the cluster it adds is one the tile owns.
+/// the cluster it adds is one the tile owns. Along a record the priorities (error, then size)
+/// never rise: the recorded priority is the lowest so far (rounding in the float normals can put
+/// a part's computed error a hair above its cluster's).
 struct SplitKey
 {
     double error = 0;
@@ -63,7 +65,7 @@ struct TileProbe
     const LevelCount *At(int level) const;
 };
 
-/// What the next probe of every tile must find: its counts at `level` (splitCap 0), or its first
+/// What the next probe of a tile must find: its counts at `level` (splitCap 0), or its first
 /// splitCap splits at `level`.
 struct ProbeNeed
 {
@@ -84,6 +86,7 @@ struct TileShare
 {
     int id = 0;
     std::uint64_t owned = 0;  ///< the surfels the tile should keep; the shares sum to the target
+                              ///< (less when the tiles have fewer clusters to split)
     std::uint64_t target = 0; ///< the count its run resamples to, halo included (0: it keeps nothing)
     std::vector<TileTrial> tried; ///< the runs adjusted from, in the order run
 };
@@ -100,12 +103,21 @@ struct Shares
 struct ShareDecision
 {
     bool shared = false;
-    ProbeNeed need;  ///< when not shared
-    Shares shares;   ///< when shared
+    std::vector<ProbeNeed> needs; ///< when not shared: one per tile of the manifest, in its order
+    Shares shares;                ///< when shared
 };
 
+/// The fewest splits a tile records: a tile owning a small part of the scan still records enough
+/// to take its part of the threshold.
+constexpr std::uint64_t kMinSplitCap = 64;
+
 /// Decides from `probes` (one per tile of `manifest`, in its order; a tile not probed yet has no
-/// levels) with the level search of the tiles' parameters (start level, mergeWithin).
+/// levels) with the level search of the tiles' parameters (start level, mergeWithin). At the level
+/// found, each tile records twice its part of the clusters missing (by the clusters it owns there)
+/// times its ratio of made to owned clusters, at least kMinSplitCap: its record interleaves splits
+/// of its halo's clusters with its own. A
+/// record cut short by its cap and taken whole may hide splits above the threshold: that tile
+/// records twice as many, until the threshold falls inside every cut record.
 ShareDecision DecideShares(const Manifest &manifest, int startLevel, double mergeWithin,
                            const std::vector<TileProbe> &probes);
 
@@ -125,11 +137,12 @@ constexpr std::size_t kAdjustRounds = 3;
 bool WriteProbe(const std::string &dir, const TileProbe &probe, std::string &error);
 /// False, with no error, when the tile has no probe yet.
 bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &error);
-/// Every tile's probe, in the manifest's order (a tile without one has none of its fields set).
+/// Every tile's probe, in the manifest's order (a tile without one has only its id set).
 bool ReadProbes(const std::string &dir, const Manifest &manifest, std::vector<TileProbe> &probes, std::string &error);
 
-/// DecideShares on the probes in `dir`, with the parameters of the manifest.
-bool DecideFromProbes(const std::string &dir, const Manifest &manifest, ShareDecision &decision, std::string &error);
+/// DecideShares on the probes in `dir` (read into `probes`), with the parameters of the manifest.
+bool DecideFromProbes(const std::string &dir, const Manifest &manifest, std::vector<TileProbe> &probes,
+                      ShareDecision &decision, std::string &error);
 
 /// The tiles whose probe lacks what the decision needs; none once the shares are written.
 bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<int> &ids, std::string &error);

@@ -71,16 +71,28 @@ bool WriteResult(const std::string &path, const std::vector<Surfel> &surfels, st
 
 } // namespace
 
-std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
-                               std::uint64_t corePoints)
+namespace {
+
+/// Per surfel of `result`, its anchor: the vertex of its member with the smallest input index
+/// (indices.size() for a surfel without members).
+std::vector<std::size_t> Anchors(const ResamplingResult &result, const std::vector<std::uint64_t> &indices)
 {
-    std::vector<std::size_t> anchor(result.surfels.size(), indices.size()); // vertex of the smallest index
+    std::vector<std::size_t> anchor(result.surfels.size(), indices.size());
     for (std::size_t v = 0; v < indices.size(); ++v) {
         const int s = result.representative[v];
         if (s < 0) continue;
         std::size_t &a = anchor[std::size_t(s)];
         if (a == indices.size() || indices[v] < indices[a]) a = v;
     }
+    return anchor;
+}
+
+} // namespace
+
+std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
+                               std::uint64_t corePoints)
+{
+    const std::vector<std::size_t> anchor = Anchors(result, indices);
     std::vector<bool> owned(anchor.size());
     for (std::size_t s = 0; s < anchor.size(); ++s) owned[s] = anchor[s] < corePoints;
     return owned;
@@ -168,17 +180,12 @@ namespace {
 
 /// The split record of a tile resampled to a count without exchanges: for each split, whether
 /// the cluster it added is owned, found by undoing the splits from the last (a split's two parts
-/// were one cluster, anchored at the smaller of their anchors).
+/// were one cluster, anchored at the smaller of their anchors); the priorities as SplitKey keeps
+/// them, never rising.
 std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoints)
 {
     const ResamplingResult &result = tile.result;
-    std::vector<std::size_t> anchor(result.surfels.size(), tile.indices.size()); // as OwnedSurfels
-    for (std::size_t v = 0; v < tile.indices.size(); ++v) {
-        const int s = result.representative[v];
-        if (s < 0) continue;
-        std::size_t &a = anchor[std::size_t(s)];
-        if (a == tile.indices.size() || tile.indices[v] < tile.indices[a]) a = v;
-    }
+    std::vector<std::size_t> anchor = Anchors(result, tile.indices);
     std::vector<SplitKey> keys(result.targetSplits.size());
     for (std::size_t k = keys.size(); k-- > 0;) {
         const CountSplit &split = result.targetSplits[k];
@@ -188,6 +195,14 @@ std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoi
         const std::size_t other = addedFirst ? kept : added;
         keys[k] = {split.error, split.size, other < corePoints};
         anchor[std::size_t(split.cluster)] = addedFirst ? added : kept;
+    }
+    for (std::size_t k = 1; k < keys.size(); ++k) {
+        const SplitKey &before = keys[k - 1];
+        SplitKey &key = keys[k];
+        if (key.error > before.error || (key.error == before.error && key.size > before.size)) {
+            key.error = before.error;
+            key.size = before.size;
+        }
     }
     return keys;
 }
@@ -202,13 +217,16 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
     const TileEntry *entry = FindTile(dir, manifest, id, error);
     if (entry == nullptr) return false;
     ShareDecision decision;
-    TileProbe probe;
-    bool ok = DecideFromProbes(dir, manifest, decision, error) && (ReadProbe(dir, id, probe, error) || error.empty());
-    if (!ok || decision.shared || Satisfies(probe, decision.need)) {
-        if (!ok) error = "tile " + std::to_string(id) + ": " + error;
-        return ok;
+    std::vector<TileProbe> probes;
+    if (!DecideFromProbes(dir, manifest, probes, decision, error)) {
+        error = "tile " + std::to_string(id) + ": " + error;
+        return false;
     }
-    const ProbeNeed need = figures.need = decision.need;
+    const std::size_t index = std::size_t(entry - manifest.tiles.data());
+    TileProbe &probe = probes[index]; // as the decision read it
+    if (decision.shared || Satisfies(probe, decision.needs[index])) return true;
+    const ProbeNeed need = figures.need = decision.needs[index];
+    bool ok = true;
     ResampledTile tile;
     if (need.splitCap == 0) {
         ok = ResampleTile(dir, manifest, *entry, [&need](ResamplingParams &param) {
@@ -220,6 +238,7 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
             probe.levels.push_back(figures.counts);
         }
     } else {
+        // The decision asks for splits at a level only once every tile has its counts there.
         const std::uint64_t points = entry->corePoints + entry->haloPoints;
         const std::uint64_t count = std::min(points, probe.At(need.level)->clusters + need.splitCap);
         ok = ResampleTile(dir, manifest, *entry, [&](ResamplingParams &param) {
