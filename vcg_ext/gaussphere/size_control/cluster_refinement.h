@@ -66,8 +66,9 @@ inline int *SplitMembers(const PointArray &points, const PointArray &normals, in
 constexpr int kRefinementCancelled = -1;
 
 /// One split of SplitToCount, in the order made: the cluster split, the cluster it added, and the
-/// split's priority (the L2,1 error of the cluster split, then its size). The priorities never
-/// rise along the sequence: each part's error is at most the error of the cluster it came from.
+/// split's priority (the L2,1 error of the cluster split, then its size). Each part's error is at
+/// most the error of the cluster it came from, so the priorities fall along the sequence, up to
+/// the rounding of errors computed from float normals (a part's can exceed its cluster's by that).
 struct CountSplit
 {
     int cluster = 0, added = 0;
