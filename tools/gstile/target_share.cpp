@@ -76,6 +76,15 @@ std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<
 
 namespace {
 
+/// The positions (in the manifest's order) of the tiles whose probe lacks what `needs` asks.
+std::vector<std::size_t> TilesLacking(const std::vector<TileProbe> &probes, const std::vector<ProbeNeed> &needs)
+{
+    std::vector<std::size_t> lacking;
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        if (!Satisfies(probes[t], needs[t])) lacking.push_back(t);
+    return lacking;
+}
+
 /// The tiles' splits at the level taken in priority order (ties by tile, then by order within
 /// it) until the owned clusters reach the target, or the records run out: `taken` and
 /// `addedOwned` per tile.
@@ -114,12 +123,8 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
                            const std::vector<TileProbe> &probes)
 {
     ShareDecision decision;
-    const auto lacking = [&probes, &decision]() {
-        for (std::size_t t = 0; t < probes.size(); ++t)
-            if (!Satisfies(probes[t], decision.needs[t])) return true;
-        return false;
-    };
-    vcg::gaussphere::LevelSearch search(manifest.targetCount, startLevel);
+    const auto lacking = [&probes, &decision]() { return !TilesLacking(probes, decision.needs).empty(); };
+    LevelSearch search(manifest.targetCount, startLevel);
     while (const int level = search.Next()) {
         decision.needs.assign(probes.size(), ProbeNeed{level, 0});
         if (lacking()) return decision;
@@ -254,8 +259,7 @@ bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<
     ShareDecision decision;
     if (!DecideFromProbes(dir, manifest, probes, decision, error)) return false;
     if (decision.shared) return true;
-    for (std::size_t t = 0; t < probes.size(); ++t)
-        if (!Satisfies(probes[t], decision.needs[t])) ids.push_back(manifest.tiles[t].id);
+    for (const std::size_t t : TilesLacking(probes, decision.needs)) ids.push_back(manifest.tiles[t].id);
     return true;
 }
 
