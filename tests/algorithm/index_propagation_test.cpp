@@ -12,6 +12,8 @@
 #include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 #include <vcg_ext/gaussphere/clustering/index_propagation.h>
+#include <vcg_ext/gaussphere/clustering/seed_order.h>
+#include <vcg_ext/gaussphere/neighbors/morton_order.h>
 
 #include "test_support.h"
 
@@ -304,6 +306,70 @@ TEST_F(IndexPropagationOnBumps, EmptySeedOrderIsThePointOrder)
             << "the fixture's seed order gives other labels: the comparison can fail";
     }
     omp_set_num_threads(threadsBefore);
+}
+
+// What the resampler's seed order is for: on a flat face (one normal, one Gaussian triangle), the
+// clusters of the points away from a cut are the same with and without the points beyond it. A
+// 240 x 40 plane; in SeedOrder the part x >= 120 alone clusters the points x >= 180 as the whole
+// does. Along the Morton curve, which passes the cut-away points first, it does not.
+TEST(IndexPropagation, InSeedOrderClustersAwayFromACutDoNotDependOnThePointsBeyondIt)
+{
+    const gstest::PointSet whole = gstest::PlaneGrid(240, 40, 1.f);
+    gstest::PointSet part;
+    IndexArray wholeIndex; // of each point of `part`
+    for (int i = 0; i < whole.Size(); ++i)
+        if (whole.points[i][0] >= 120) { part.Add(whole.points[i], whole.normals[i]); wholeIndex.push_back(i); }
+    auto cluster = [](const gstest::PointSet &s, bool seedOrder) {
+        const PointGrid tree(s.points);
+        AdaptiveNeighborParams ap;
+        ap.k = 8;
+        const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
+        const IndexArray order = seedOrder ? SeedOrder(s.points) : MortonOrder(s.points);
+        return Propagate(s.normals, IndexArray(s.Size(), 0), g, order, Params(6));
+    };
+    // How many points x >= 180 the part clusters otherwise than the whole (a cluster of the part
+    // matched to the whole's cluster of its first such point).
+    auto differing = [&](bool seedOrder) {
+        const Clustering a = cluster(whole, seedOrder), b = cluster(part, seedOrder);
+        std::map<int, int> partToWhole;
+        std::set<int> wholeUsed;
+        int differ = 0;
+        for (int t = 0; t < part.Size(); ++t) {
+            if (part.points[t][0] < 180) continue;
+            const int la = a.label[wholeIndex[t]];
+            const auto found = partToWhole.find(b.label[t]);
+            if (found == partToWhole.end()) {
+                differ += !wholeUsed.insert(la).second;
+                partToWhole.emplace(b.label[t], la);
+            } else {
+                differ += found->second != la;
+            }
+        }
+        return differ;
+    };
+    EXPECT_EQ(differing(true), 0);
+    EXPECT_GT(differing(false), 100) << "Morton order: the cut changes clusters far from it (the test can fail)";
+}
+
+// The seed order reads each point alone and ignores a power-of-two scale: the same points
+// multiplied by 8 come in the same order, and a subset keeps its points' relative order.
+TEST(SeedOrder, DependsOnEachPointAloneAtAnyPowerOfTwoScale)
+{
+    const gstest::PointSet s = gstest::PlaneGrid(30, 30, 0.37f);
+    PointArray scaled = s.points;
+    for (auto &p : scaled) p = p * 8.f;
+    const IndexArray order = SeedOrder(s.points);
+    EXPECT_EQ(SeedOrder(scaled), order);
+    PointArray half;
+    IndexArray halfIndex;
+    for (int i = 0; i < s.Size(); i += 2) { half.push_back(s.points[i]); halfIndex.push_back(i); }
+    IndexArray expected;
+    for (int i : order)
+        if (i % 2 == 0) expected.push_back(i);
+    IndexArray got;
+    for (int t : SeedOrder(half)) got.push_back(halfIndex[t]);
+    EXPECT_EQ(got, expected);
+    EXPECT_NE(order, Identity(s.Size())) << "not the points' own order";
 }
 
 // Points pre-marked -1 are excluded: they stay -1, are never seeds, and do not carry

@@ -66,8 +66,10 @@ TEST_F(CubePipeline, FlatFacesGiveLargeSurfelsInsideAndSmallOnesAtTheEdges)
         facePoints += int(members[c].size());
         float nearest = 2;
         for (int i : members[c]) nearest = std::min(nearest, gstest::DistanceToCubeEdge(Cube(), i));
+        // The cap, plus a singleton the last round's rejoining may add (normalization ends after
+        // its rounds with a rejoining, cluster_normalization.h).
         if (nearest < 1.5f * spacing)
-            EXPECT_LE(int(members[c].size()), defaults.tuning.creaseClusterSize) << "cluster " << c << " touches an edge";
+            EXPECT_LE(int(members[c].size()), defaults.tuning.creaseClusterSize + 1) << "cluster " << c << " touches an edge";
         if (nearest > 3.5f * spacing) {
             ++interiorClusters;
             interiorPoints += int(members[c].size());

@@ -180,10 +180,10 @@ TEST_F(BunnyTiles, TiledCountAndRepresentedPointsMatchTheWholeRun)
 
 TEST_F(BunnyTiles, TheMergeKeepsASurfelForEveryBorderPointNoTileKeepsNorCovers)
 {
-    // Halos of 2 sample spacings: the tiles cut many border clusters differently.
+    // Halos of half a sample spacing: the tiles cut many border clusters differently.
     SplitOptions options;
     options.tilePoints = 20000;
-    options.haloSpacings = 2;
+    options.haloSpacings = 0.5;
     std::string error;
     dir_ += "_narrow";
     ASSERT_TRUE(Split(kBunny, dir_, options, manifest_, [](const std::string &) {}, error)) << error;

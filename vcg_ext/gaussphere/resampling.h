@@ -51,6 +51,7 @@
 #include <vcg_ext/gaussphere/support/flat_vector.h>
 #include <vcg_ext/gaussphere/clustering/gaussian_sphere.h>
 #include <vcg_ext/gaussphere/clustering/index_propagation.h>
+#include <vcg_ext/gaussphere/clustering/seed_order.h>
 #include <vcg_ext/gaussphere/size_control/max_error_exchange.h>
 #include <vcg_ext/gaussphere/neighbors/morton_order.h>
 #include <vcg_ext/gaussphere/neighbors/point_grid.h>
@@ -219,6 +220,7 @@ struct Run
     PointArray points, normals;
     IndexArray source;
     NeighborGraph graph;
+    IndexArray seedOrder;   ///< of index propagation (seed_order.h)
     double scale = 1;       ///< unit scale = scale x the model's
     double diagonal = 0;    ///< of the points, at unit scale
     double weightWidth = 0; ///< h of the surfel normal weights, at unit scale
@@ -268,9 +270,9 @@ void ReadPoints(const MeshType &mesh, Run &run)
 
 /// Step 1: the points renumbered along the Morton curve of their own coordinates
 /// (morton_order.h: points close in space become close in memory, which makes every later pass
-/// cache-friendly; the order is also the seed order of index propagation and breaks every tie,
-/// and it is the same for a part of an input whatever else the input holds), then their k
-/// nearest neighbours and crease points.
+/// cache-friendly; the order breaks every tie, and it is the same for a part of an input
+/// whatever else the input holds), the seed order of index propagation, then their k nearest
+/// neighbours and crease points.
 inline void FindNeighbors(Run &run)
 {
     const char *sorting = "Gaussian sphere resampling: sorting the points in space";
@@ -280,6 +282,7 @@ inline void FindNeighbors(Run &run)
     Permute(order, run.points);
     Permute(order, run.normals);
     Permute(order, run.source);
+    run.seedOrder = SeedOrder(run.points);
     vcg::CallBackPos *cb = run.cb;
     std::unique_ptr<PointGrid> grid(
         new PointGrid(run.points, PointGrid::kPointsPerCell, [cb, sorting]() { Report(cb, 1, sorting); }));
@@ -335,7 +338,7 @@ inline LevelClustering ClusterAtLevel(Run &run, int level)
     IndexPropagationParams propagation;
     propagation.maxDepth = run.param.propagationDepth;
     propagation.inscribedRadius = inscribedRadius;
-    if (!PropagateIndices(run.normals, triangle, run.graph, IndexArray(), propagation, c, [&run](double done) {
+    if (!PropagateIndices(run.normals, triangle, run.graph, run.seedOrder, propagation, c, [&run](double done) {
             return run.Progress(45 + int(10 * done), "Gaussian sphere resampling: index propagation");
         }))
         throw ResamplingCancelled();

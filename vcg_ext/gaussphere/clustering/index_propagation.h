@@ -10,6 +10,9 @@
 // text compares neighbouring points. Comparing with the seed bounds every member's normal
 // to a disc of the inscribed radius around the seed's, which bounds the shape error; with
 // the current point, labels would drift across the whole triangle.
+//
+// Seed order. The caller gives it; the resampler's is unrelated to position (seed_order.h), so
+// that what a cluster depends on stays near it.
 #ifndef VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 #define VCG_EXT_GAUSSPHERE_INDEX_PROPAGATION_H
 

@@ -2,7 +2,7 @@
 // octree of power-of-two cubes aligned at the coordinate origin, exact points tied by index.
 //
 // Why this curve: every later stage breaks ties by point index (equal neighbour distances,
-// the seeds of index propagation, cluster numbering), so the numbering decides the result.
+// equal hashes of the seed order, cluster numbering), so the numbering decides the result.
 // A point's place on this curve depends on its own coordinates alone (the curve's cubes are
 // fixed in space, not fitted to the input), so a part of an input is numbered in the same
 // relative order whatever else the input holds, and resampled alike. Multiplying every
