@@ -400,8 +400,8 @@ def tiling():
              "tiled run*)."),
             ("flat", "drilled-box_", "Flat faces",
              "The drilled box of `gsscale` (a cube with a cylindrical hole: flat faces, sharp edges), otherwise as "
-             "above (docs/tiling.md, *Halo width*: where clusters on a flat face start depends on points beyond "
-             "any halo).")):
+             "above (docs/tiling.md, *Halo width*: on a flat face, one Gaussian triangle wide, clusters depend "
+             "only on points near them because seeds come in an order hashed from their positions).")):
         results = tile_results(stage)
         rows = whole_vs_tiled_rows(results[1], shape) if results else []
         if rows:

@@ -8,8 +8,9 @@
 // away, and two overlapping parts of a scan (gstile's tiles) cluster their common region
 // differently. In an order unrelated to position, a seed waits only for the nearby seeds that
 // come before it, and a chain of ever earlier seeds, each within reach of the next, stays short
-// (the longest dependence chains of greedy choices in random order grow only with the logarithm
-// of the count): what a point's cluster depends on lies within a few cluster sizes of it. The
+// (greedy choices in random order have dependence chains that grow only polylogarithmically with
+// the count: Blelloch, Fineman and Shun 2012, for maximal independent sets): what a point's
+// cluster depends on lies within a few cluster sizes of it. The
 // hash reads the point's own coordinates alone and ignores a power-of-two scale (the resampler's
 // unit scale), so a part of a scan gets the same order alone or inside the whole; equal hashes
 // keep the points' own order.
