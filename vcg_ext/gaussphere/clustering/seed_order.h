@@ -10,10 +10,9 @@
 // come before it, and a chain of ever earlier seeds, each within reach of the next, stays short
 // (greedy choices in random order have dependence chains that grow only polylogarithmically with
 // the count: Blelloch, Fineman and Shun 2012, for maximal independent sets): what a point's
-// cluster depends on lies within a few cluster sizes of it. The
-// hash reads the point's own coordinates alone and ignores a power-of-two scale (the resampler's
-// unit scale), so a part of a scan gets the same order alone or inside the whole; equal hashes
-// keep the points' own order.
+// cluster depends on lies within a few cluster sizes of it. The hash reads the point's own
+// coordinates alone and ignores a power-of-two scale (the resampler's unit scale), so a part of a
+// scan gets the same order alone or inside the whole; equal hashes keep the points' own order.
 #ifndef VCG_EXT_GAUSSPHERE_SEED_ORDER_H
 #define VCG_EXT_GAUSSPHERE_SEED_ORDER_H
 
