@@ -7,7 +7,7 @@
 // face of millions of points, the clusters near one point then depend on points arbitrarily far
 // away, and two overlapping parts of a scan (gstile's tiles) cluster their common region
 // differently. In an order unrelated to position, a seed waits only for the nearby seeds that
-// come before it, and a chain of ever earlier seeds, each within reach of the next, stays short
+// come before it, and a chain of seeds, each before the next and within its reach, stays short
 // (greedy choices in random order have dependence chains that grow only polylogarithmically with
 // the count: Blelloch, Fineman and Shun 2012, for maximal independent sets): what a point's
 // cluster depends on lies within a few cluster sizes of it. The hash reads the point's own
