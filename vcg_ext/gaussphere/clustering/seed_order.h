@@ -61,11 +61,7 @@ inline IndexArray SeedOrder(const PointArray &points)
     FlatVector<std::pair<std::uint64_t, int>> keyed(static_cast<size_t>(n));
 #pragma omp parallel for schedule(static)
     for (long long i = 0; i < n; ++i) keyed[size_t(i)] = {HashPosition(points[size_t(i)]), int(i)};
-    SortByKeyStable(keyed);
-    IndexArray order(static_cast<size_t>(n));
-#pragma omp parallel for schedule(static)
-    for (long long s = 0; s < n; ++s) order[size_t(s)] = keyed[size_t(s)].second;
-    return order;
+    return SortedIndices(keyed);
 }
 
 } // namespace gaussphere

@@ -157,10 +157,7 @@ inline IndexArray MortonOrder(const PointArray &points)
                                   MortonSpread(Window(p[1], low[octant])) << 1 | MortonSpread(Window(p[2], low[octant]));
         keyed[i] = {key, i};
     }
-    SortByKeyStable(keyed);
-    IndexArray order(n);
-#pragma omp parallel for schedule(static)
-    for (int s = 0; s < n; ++s) order[s] = keyed[s].second;
+    IndexArray order = SortedIndices(keyed);
     const auto pointLess = [&points](int i, int j) { return MortonLess(points[i], points[j]); };
     for (int s = 0; s < n;) {
         int end = s + 1;

@@ -89,6 +89,17 @@ inline void SortByKeyStable(FlatVector<std::pair<std::uint64_t, int>> &keyed)
     }
 }
 
+/// The indices carried by `keyed` (pairs {key, index}) in increasing key order, equal keys in the
+/// given order (SortByKeyStable); `keyed` is left sorted for the caller's further use.
+inline IndexArray SortedIndices(FlatVector<std::pair<std::uint64_t, int>> &keyed)
+{
+    SortByKeyStable(keyed);
+    IndexArray order(keyed.size());
+#pragma omp parallel for schedule(static)
+    for (long long s = 0; s < (long long)keyed.size(); ++s) order[size_t(s)] = keyed[size_t(s)].second;
+    return order;
+}
+
 } // namespace gaussphere
 } // namespace vcg
 
