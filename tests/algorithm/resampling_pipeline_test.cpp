@@ -151,12 +151,61 @@ TEST(ResamplingPipeline, ATargetAtAFixedLevelSplitsThatLevelsClustersAndRecordsT
     EXPECT_EQ(fixed.stats.levelUsed, 4);
     EXPECT_EQ(fixed.stats.levelsTried, 1);
     ASSERT_EQ(int(fixed.surfels.size()), p.targetCount);
-    ASSERT_EQ(int(fixed.targetSplits.size()), p.targetCount - atLevel);
-    for (std::size_t k = 0; k < fixed.targetSplits.size(); ++k)
-        EXPECT_EQ(fixed.targetSplits[k].added, atLevel + int(k)) << "surfel indices of the clusters added";
+    const std::vector<CountSplit> &splits = fixed.targetRecord.splits;
+    ASSERT_EQ(int(splits.size()), p.targetCount - atLevel);
+    for (std::size_t k = 0; k < splits.size(); ++k)
+        EXPECT_EQ(splits[k].added, atLevel + int(k)) << "surfel indices of the clusters added";
+    EXPECT_TRUE(fixed.targetRecord.merges.empty());
     gstest::ExpectValidResult(fixed, s);
     p.maxErrorExchanges = 4;
-    EXPECT_TRUE(gstest::Resample(s, p).targetSplits.empty()) << "exchanges change the clusters: no record";
+    EXPECT_TRUE(gstest::Resample(s, p).targetRecord.splits.empty()) << "exchanges change the clusters: no record";
+}
+
+// Below the level's count, without exchanges: the merges that reached the count, recorded with
+// each vertex's cluster at the level; replayed on those clusters they give the surfels' clusters.
+TEST(ResamplingPipeline, ATargetBelowTheLevelRecordsTheMergesThatGiveItsClusters)
+{
+    const gstest::PointSet s = gstest::FibonacciSphere(20000);
+    ResamplingParams p;
+    p.subdivisionLevel = 4;
+    const int atLevel = int(gstest::Resample(s, p).surfels.size());
+    p.targetCount = atLevel / 3;
+    p.searchLevel = false;
+    p.maxErrorExchanges = 0;
+    const ResamplingResult r = gstest::Resample(s, p);
+    ASSERT_EQ(int(r.surfels.size()), p.targetCount);
+    const CountRecord &record = r.targetRecord;
+    EXPECT_TRUE(record.splits.empty());
+    ASSERT_EQ(int(record.merges.size()), atLevel - p.targetCount);
+    ASSERT_EQ(record.levelRepresentative.size(), r.representative.size());
+    std::vector<int> parent(static_cast<std::size_t>(atLevel));
+    for (int c = 0; c < atLevel; ++c) parent[std::size_t(c)] = c;
+    const auto root = [&parent](int c) {
+        while (parent[std::size_t(c)] != c) c = parent[std::size_t(c)];
+        return c;
+    };
+    int cheaper = 0;
+    for (std::size_t k = 0; k < record.merges.size(); ++k) {
+        const CountMerge &m = record.merges[k];
+        ASSERT_EQ(root(m.kept), m.kept) << "merge " << k << ": a cluster no merge took away";
+        ASSERT_EQ(root(m.gone), m.gone) << "merge " << k;
+        ASSERT_NE(m.kept, m.gone);
+        parent[std::size_t(m.gone)] = m.kept;
+        cheaper += k > 0 && m.cost < record.merges[k - 1].cost;
+    }
+    EXPECT_LT(cheaper, int(record.merges.size()) / 4) << "the costs mostly rise";
+    // Each merged cluster of the level is one surfel, and no surfel holds two of them.
+    std::vector<int> surfelOf(static_cast<std::size_t>(atLevel), -1), clusterOf(r.surfels.size(), -1);
+    for (std::size_t v = 0; v < r.representative.size(); ++v) {
+        const int c = root(record.levelRepresentative[v]), surfel = r.representative[v];
+        if (surfelOf[std::size_t(c)] < 0) surfelOf[std::size_t(c)] = surfel;
+        if (clusterOf[std::size_t(surfel)] < 0) clusterOf[std::size_t(surfel)] = c;
+        ASSERT_EQ(surfelOf[std::size_t(c)], surfel) << "vertex " << v;
+        ASSERT_EQ(clusterOf[std::size_t(surfel)], c) << "vertex " << v;
+    }
+    p.maxErrorExchanges = 4;
+    const CountRecord none = gstest::Resample(s, p).targetRecord;
+    EXPECT_TRUE(none.merges.empty() && none.levelRepresentative.empty()) << "exchanges change the clusters: no record";
 }
 
 /// Largest lambda1 / lambda2 over the clusters big enough to be split.

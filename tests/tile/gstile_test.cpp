@@ -286,37 +286,6 @@ TEST_F(BunnyTiles, ARerunGivesTheSameBytes)
     EXPECT_EQ(before, after);
 }
 
-TEST(TargetShare, AMergedLevelSharesTheTargetInProportionToOwnedClusters)
-{
-    Manifest manifest;
-    manifest.targetCount = 7;
-    manifest.tiles.resize(4);
-    const std::uint64_t points[4] = {1000, 1000, 1000, 5};
-    for (int t = 0; t < 4; ++t) {
-        manifest.tiles[t].id = 10 + t;
-        manifest.tiles[t].corePoints = points[t];
-    }
-    // Owned 10 : 30 : 0 : 30 gives the exact shares 1, 3, 0, 3 of 7; made/owned 2, 1.5, -, 4.
-    const std::vector<LevelCount> counts = {{2, 20, 10}, {2, 45, 30}, {2, 5, 0}, {2, 120, 30}};
-    const std::vector<TileShare> shares = ShareByOwned(manifest, counts);
-    ASSERT_EQ(shares.size(), 4u);
-    EXPECT_EQ(shares[0].owned, 1u);
-    EXPECT_EQ(shares[1].owned, 3u);
-    EXPECT_EQ(shares[2].owned, 0u);
-    EXPECT_EQ(shares[3].owned, 3u);
-    EXPECT_EQ(shares[0].target, 2u);
-    EXPECT_EQ(shares[1].target, 5u) << "3 x 1.5 = 4.5, rounded";
-    EXPECT_EQ(shares[2].target, 0u) << "a tile that owns nothing runs nothing";
-    EXPECT_EQ(shares[3].target, 5u) << "3 x 4 = 12, capped by the tile's 5 points";
-    EXPECT_EQ(shares[1].id, 11);
-
-    manifest.targetCount = 8; // exact shares 1.14, 3.43, 0, 3.43: the largest remainders, in tile order, get one each
-    const std::vector<TileShare> more = ShareByOwned(manifest, counts);
-    EXPECT_EQ(more[0].owned + more[1].owned + more[2].owned + more[3].owned, 8u);
-    EXPECT_EQ(more[1].owned, 4u);
-    EXPECT_EQ(more[3].owned, 3u);
-}
-
 /// Two tiles of 1,000 points, each making twice the clusters it owns at every level.
 Manifest TwoTiles(std::uint64_t target)
 {
@@ -340,7 +309,7 @@ TEST(TargetShare, TheProbesFollowTheLevelSearchOfTheTilesSummedCounts)
     ASSERT_FALSE(d.shared);
     ASSERT_EQ(d.needs.size(), 2u);
     EXPECT_EQ(d.needs[0].level, 8) << "the search starts at the level asked for";
-    EXPECT_EQ(d.needs[0].splitCap, 0u);
+    EXPECT_EQ(d.needs[0].recordCap, 0u);
     ProbeLevel(probes[0], 8, 150);
     d = DecideShares(manifest, 8, 1.15, probes);
     EXPECT_EQ(d.needs[1].level, 8) << "until every tile has it";
@@ -359,7 +328,7 @@ TEST(TargetShare, TheProbesFollowTheLevelSearchOfTheTilesSummedCounts)
     d = DecideShares(manifest, 8, 1.15, probes);
     ASSERT_FALSE(d.shared);
     EXPECT_EQ(d.needs[0].level, 5);
-    EXPECT_EQ(d.needs[0].splitCap, kMinSplitCap) << "a few missing: the fewest a tile records";
+    EXPECT_EQ(d.needs[0].recordCap, kMinRecordCap) << "a few missing: the fewest a tile records";
     const Manifest many = TwoTiles(2000);
     ProbeLevel(probes[0], 16, 1200);
     ProbeLevel(probes[1], 16, 400);
@@ -376,16 +345,47 @@ TEST(TargetShare, TheProbesFollowTheLevelSearchOfTheTilesSummedCounts)
     d = DecideShares(many, 16, 1.0, probes);
     ASSERT_FALSE(d.shared);
     EXPECT_EQ(d.needs[0].level, 16);
-    EXPECT_EQ(d.needs[0].splitCap, 1200u) << "twice its 300 of the 400 missing, times 2 made per owned";
-    EXPECT_EQ(d.needs[1].splitCap, 400u) << "twice its 100, times 2";
+    EXPECT_EQ(d.needs[0].recordCap, 1200u) << "twice its 300 of the 400 missing, times 2 made per owned";
+    EXPECT_EQ(d.needs[1].recordCap, 400u) << "twice its 100, times 2";
 
-    // At 1.25 the level giving 120 is merged down instead, by owned counts 90 : 30.
+    // At 1.25 the level giving 120 is merged down instead: 20 in excess, owned 90 : 30.
     d = DecideShares(manifest, 8, 1.25, probes);
+    ASSERT_FALSE(d.shared);
+    EXPECT_EQ(d.needs[0].level, 6);
+    EXPECT_TRUE(d.needs[0].merges);
+    EXPECT_EQ(d.needs[0].recordCap, kMinRecordCap) << "twice its 15 of the 20, times 2: fewer than the fewest";
+}
+
+TEST(TargetShare, MergesAreTakenInCostOrderAcrossTheTiles)
+{
+    const Manifest manifest = TwoTiles(10);
+    std::vector<TileProbe> probes(2);
+    for (int t = 0; t < 2; ++t) {
+        ProbeLevel(probes[t], 2, 7); // level 2 gives 14, 1.4 times the target: merged down
+        probes[t].recordLevel = 2;
+        probes[t].recordCap = kMinRecordCap;
+    }
+    // The four owned merges in excess go 3 : 1 by cost; tile 6's halo merge at 0.3 runs too.
+    probes[0].merges = {{0.1, true}, {0.2, true}, {0.4, false}, {0.5, true}, {0.9, true}};
+    probes[1].merges = {{0.3, false}, {0.45, true}, {0.6, true}};
+    const ShareDecision d = DecideShares(manifest, 2, 1.15, probes);
     ASSERT_TRUE(d.shared);
-    EXPECT_EQ(d.shares.level, 6);
-    EXPECT_EQ(d.shares.tiles[0].owned, 75u);
-    EXPECT_EQ(d.shares.tiles[1].owned, 25u);
-    EXPECT_EQ(d.shares.tiles[0].target, 150u) << "twice made as owned";
+    EXPECT_EQ(d.shares.level, 2);
+    EXPECT_EQ(d.shares.tiles[0].owned, 7u - 3u);
+    EXPECT_EQ(d.shares.tiles[1].owned, 7u - 1u);
+    EXPECT_EQ(d.shares.tiles[0].target, 14u - 4u) << "0.1, 0.2, 0.4 (halo) and 0.5";
+    EXPECT_EQ(d.shares.tiles[1].target, 14u - 2u) << "0.3 (halo) and 0.45";
+
+    // A record cut short by its cap and taken whole may hide merges below the threshold.
+    std::vector<TileProbe> cut = probes;
+    cut[0].merges.clear();
+    for (std::uint64_t k = 0; k < kMinRecordCap; ++k) cut[0].merges.push_back({0.01 * double(k), false});
+    cut[1].merges = {{5.0, true}, {6.0, true}, {7.0, true}, {8.0, true}};
+    const ShareDecision more = DecideShares(manifest, 2, 1.15, cut);
+    ASSERT_FALSE(more.shared);
+    EXPECT_EQ(more.needs[0].recordCap, 2 * kMinRecordCap);
+    EXPECT_TRUE(more.needs[0].merges);
+    EXPECT_TRUE(Satisfies(cut[1], more.needs[1])) << "a record shorter than its cap holds all the tile's merges";
 }
 
 TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
@@ -396,8 +396,8 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
         ProbeLevel(probes[t], 2, 3); // level 2 fits (6 of 10), levels 3 and 4 give far too many
         ProbeLevel(probes[t], 4, 30);
         ProbeLevel(probes[t], 3, 20);
-        probes[t].splitLevel = 2;
-        probes[t].splitCap = kMinSplitCap;
+        probes[t].recordLevel = 2;
+        probes[t].recordCap = kMinRecordCap;
     }
     // Tile 5's priorities fall fast, tile 6's slowly: the four owned splits missing go 1 : 3.
     probes[0].splits = {{9.0, 10, true}, {4.0, 6, false}, {1.0, 4, true}, {0.5, 3, true}};
@@ -414,11 +414,11 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
     // hide splits above the threshold, so that tile records twice as many.
     std::vector<TileProbe> cut = probes;
     cut[0].splits.clear();
-    for (std::uint64_t k = 0; k < kMinSplitCap; ++k) cut[0].splits.push_back({9.0 - 0.01 * double(k), 9, false});
+    for (std::uint64_t k = 0; k < kMinRecordCap; ++k) cut[0].splits.push_back({9.0 - 0.01 * double(k), 9, false});
     cut[1].splits = {{1.0, 2, true}};
     const ShareDecision more = DecideShares(manifest, 2, 1.15, cut);
     ASSERT_FALSE(more.shared);
-    EXPECT_EQ(more.needs[0].splitCap, 2 * kMinSplitCap);
+    EXPECT_EQ(more.needs[0].recordCap, 2 * kMinRecordCap);
     EXPECT_FALSE(Satisfies(cut[0], more.needs[0]));
     EXPECT_TRUE(Satisfies(cut[1], more.needs[1])) << "a record shorter than its cap holds all the tile's splits";
 }
@@ -432,8 +432,8 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
     TileProbe probe;
     probe.id = 3;
     probe.levels = {{8, 120, 70}, {4, 40, 25}};
-    probe.splitLevel = 4;
-    probe.splitCap = 6;
+    probe.recordLevel = 4;
+    probe.recordCap = 6;
     probe.splits = {{0.75, 9, true}, {0.5, 7, false}, {0.5, 5, true}};
     std::string error;
     ASSERT_TRUE(WriteProbe(dir, probe, error)) << error;
@@ -456,22 +456,28 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
         EXPECT_NE(reason.find(path), std::string::npos) << why << ": " << reason;
     };
     refused("{\"levels\": [[8, 120", "cut short");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.4], "
-            "\"split_size\": [3], \"split_adds_owned\": [1, 0]}", "lengths differ");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.9], "
-            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "a priority rises");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 1, \"split_error\": [0.5, 0.4], "
-            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0]}", "more splits than the cap");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [0.5, 0.5], "
-            "\"split_size\": [3, 4], \"split_adds_owned\": [1, 0]}", "a size rises at an equal error");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 6, \"split_error\": [1e999], "
-            "\"split_size\": [3], \"split_adds_owned\": [1]}", "a number beyond double");
-    refused("{\"levels\": [[8, 10, 12]], \"split_level\": 0, \"split_cap\": 0, \"split_error\": [], "
-            "\"split_size\": [], \"split_adds_owned\": []}", "more owned than made");
-    refused("{\"levels\": [[300, 10, 5]], \"split_level\": 0, \"split_cap\": 0, \"split_error\": [], "
-            "\"split_size\": [], \"split_adds_owned\": []}", "a level beyond 256");
-    refused("{\"levels\": [], \"split_level\": 4, \"split_cap\": 18446744073709551615, \"split_error\": [], "
-            "\"split_size\": [], \"split_adds_owned\": []}", "a cap that would overflow when doubled");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [0.5, 0.4], "
+            "\"split_size\": [3], \"split_adds_owned\": [1, 0], \"merge_cost\": [], \"merge_removes_owned\": []}", "lengths differ");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [0.5, 0.9], "
+            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0], \"merge_cost\": [], \"merge_removes_owned\": []}", "a priority rises");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 1, \"split_error\": [0.5, 0.4], "
+            "\"split_size\": [3, 3], \"split_adds_owned\": [1, 0], \"merge_cost\": [], \"merge_removes_owned\": []}", "more splits than the cap");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [0.5, 0.5], "
+            "\"split_size\": [3, 4], \"split_adds_owned\": [1, 0], \"merge_cost\": [], \"merge_removes_owned\": []}", "a size rises at an equal error");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [1e999], "
+            "\"split_size\": [3], \"split_adds_owned\": [1], \"merge_cost\": [], \"merge_removes_owned\": []}", "a number beyond double");
+    refused("{\"levels\": [[8, 10, 12]], \"record_level\": 0, \"record_cap\": 0, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": [], \"merge_cost\": [], \"merge_removes_owned\": []}", "more owned than made");
+    refused("{\"levels\": [[300, 10, 5]], \"record_level\": 0, \"record_cap\": 0, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": [], \"merge_cost\": [], \"merge_removes_owned\": []}", "a level beyond 256");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 18446744073709551615, \"split_error\": [], "
+            "\"split_size\": [], \"split_adds_owned\": [], \"merge_cost\": [], \"merge_removes_owned\": []}", "a cap that would overflow when doubled");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.5, 0.4], \"merge_removes_owned\": [1, 0]}", "a merge cost falls");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.5], \"merge_removes_owned\": [1, 0]}", "merge lengths differ");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [0.5], \"split_size\": [3], "
+            "\"split_adds_owned\": [1], \"merge_cost\": [0.5], \"merge_removes_owned\": [1]}", "splits and merges");
 }
 
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
@@ -524,6 +530,86 @@ TEST(TargetShare, AfterItsRoundsATileKeepsTheNearestCountTried)
     EXPECT_EQ(share.tried.size(), kAdjustRounds + 1) << "the first count and kAdjustRounds new ones";
     EXPECT_LE(runs, kAdjustRounds + 2) << "and at most one more run, of the nearest";
     for (const TileTrial &t : share.tried) EXPECT_LE(kept(share.target), t.owned);
+}
+
+/// Per tile of `manifest`, the surfels of `result` (of the whole input) it would own: those whose
+/// anchor, the member with the smallest input index, lies in its core.
+std::vector<std::uint64_t> OwnedPerTile(const vcg::gaussphere::ResamplingResult &result,
+                                        const vcg::gaussphere::OrientedPointMesh &points, const Manifest &manifest)
+{
+    std::vector<int> anchor(result.surfels.size(), -1);
+    for (std::size_t v = 0; v < result.representative.size(); ++v) {
+        const int s = result.representative[v];
+        if (s >= 0 && anchor[std::size_t(s)] < 0) anchor[std::size_t(s)] = int(v);
+    }
+    std::vector<std::uint64_t> owned(manifest.tiles.size(), 0);
+    for (const int v : anchor) {
+        const float p[3] = {points.vert[std::size_t(v)].P()[0], points.vert[std::size_t(v)].P()[1],
+                            points.vert[std::size_t(v)].P()[2]};
+        const TileEntry *tile = manifest.Find(manifest.grid.IdOf(manifest.grid.CellOf(p)));
+        ++owned[std::size_t(tile - manifest.tiles.data())];
+    }
+    return owned;
+}
+
+// Below the coarsest level's count the whole run merges its cheapest pairs first; the tiles'
+// merges taken in cost order give each tile the surfels the whole run leaves in its core, where
+// shares in proportion to the tiles' clusters would not.
+TEST(TiledTarget, MergesAreSharedWhereTheWholeRunMakesThem)
+{
+    const std::string dir = ::testing::TempDir() + "gstile_bunny_merged";
+    SplitOptions options;
+    options.tilePoints = 20000;
+    options.param.targetCount = 500;
+    options.param.maxErrorExchanges = 0;
+    Manifest manifest;
+    std::string error;
+    ASSERT_TRUE(Split(kBunny, dir, options, manifest, [](const std::string &) {}, error)) << error;
+    std::vector<int> ids;
+    for (int round = 0; TilesToProbe(dir, manifest, ids, error) && !ids.empty(); ++round) {
+        ASSERT_LE(round, 10);
+        for (const int id : ids) {
+            ProbeFigures probe;
+            ASSERT_TRUE(ProbeTile(dir, manifest, id, probe, error)) << error;
+        }
+    }
+    ShareDecision decision;
+    bool written = false;
+    ASSERT_TRUE(error.empty() && WriteShares(dir, manifest, decision, written, error)) << error;
+    ASSERT_TRUE(decision.shared);
+
+    vcg::gaussphere::OrientedPointMesh bunny;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(kBunny, bunny, error)) << error;
+    const vcg::gaussphere::ResamplingResult whole = vcg::gaussphere::ResamplePointSet(bunny, options.param);
+    ASSERT_GT(whole.stats.mergesForTarget, 1000) << "the target lies far below the coarsest level";
+    EXPECT_EQ(decision.shares.level, whole.stats.levelUsed);
+    const std::vector<std::uint64_t> wholeOwned = OwnedPerTile(whole, bunny, manifest);
+    ASSERT_GE(wholeOwned.size(), 3u);
+    std::uint64_t missed = 0;
+    for (std::size_t t = 0; t < wholeOwned.size(); ++t) {
+        const std::uint64_t share = decision.shares.tiles[t].owned;
+        missed += share > wholeOwned[t] ? share - wholeOwned[t] : wholeOwned[t] - share;
+    }
+    EXPECT_LE(missed, 10u) << "the shares against the whole run's surfels per tile, summed";
+    // Shares in proportion to the tiles' owned clusters at the level miss by far more.
+    double proportionalMiss = 0;
+    std::uint64_t ownedAtLevel = 0;
+    std::vector<TileProbe> probes;
+    ASSERT_TRUE(ReadProbes(dir, manifest, probes, error)) << error;
+    for (const TileProbe &p : probes) ownedAtLevel += p.At(decision.shares.level)->owned;
+    for (std::size_t t = 0; t < probes.size(); ++t)
+        proportionalMiss += std::abs(500.0 * double(probes[t].At(decision.shares.level)->owned) / double(ownedAtLevel) -
+                                     double(wholeOwned[t]));
+    EXPECT_GT(proportionalMiss, 3.0 * double(missed) + 10.0);
+    // The merge records tell which merges take away an owned cluster: the runs keep the shares.
+    TileRunFigures figures;
+    std::uint64_t kept = 0;
+    for (std::size_t t = 0; t < manifest.tiles.size(); ++t) {
+        ASSERT_TRUE(RunTile(dir, manifest, manifest.tiles[t].id, figures, error)) << error;
+        EXPECT_EQ(std::uint64_t(figures.owned), decision.shares.tiles[t].owned) << "tile " << manifest.tiles[t].id;
+        kept += std::uint64_t(figures.owned);
+    }
+    EXPECT_EQ(kept, 500u);
 }
 
 TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)

@@ -40,38 +40,9 @@ const LevelCount *TileProbe::At(int level) const
 
 bool Satisfies(const TileProbe &probe, const ProbeNeed &need)
 {
-    if (need.splitCap == 0) return probe.At(need.level) != nullptr;
-    // A record shorter than its cap holds every split the tile has.
-    return probe.splitLevel == need.level && (probe.splitCap >= need.splitCap || probe.splits.size() < probe.splitCap);
-}
-
-std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<LevelCount> &counts)
-{
-    std::uint64_t ownedSum = 0;
-    for (const LevelCount &c : counts) ownedSum += c.owned;
-    std::vector<TileShare> shares(counts.size());
-    // Exact in integers: target x owned fits 128 bits.
-    std::vector<std::pair<std::uint64_t, std::size_t>> remainders; // (remainder of the division, tile)
-    std::uint64_t given = 0;
-    for (std::size_t t = 0; t < counts.size(); ++t) {
-        const unsigned __int128 product = (unsigned __int128)manifest.targetCount * counts[t].owned;
-        shares[t].id = manifest.tiles[t].id;
-        shares[t].owned = ownedSum ? std::uint64_t(product / ownedSum) : 0;
-        given += shares[t].owned;
-        remainders.push_back({ownedSum ? std::uint64_t(product % ownedSum) : 0, t});
-    }
-    // Ties by tile order: the same probes give the same shares.
-    std::stable_sort(remainders.begin(), remainders.end(),
-                     [](const auto &a, const auto &b) { return a.first > b.first; });
-    for (std::size_t r = 0; given < manifest.targetCount && r < remainders.size(); ++r, ++given)
-        ++shares[remainders[r].second].owned;
-    for (std::size_t t = 0; t < counts.size(); ++t) {
-        const TileEntry &tile = manifest.tiles[t];
-        const double madePerOwned = counts[t].owned ? double(counts[t].clusters) / double(counts[t].owned) : 1;
-        const auto target = std::uint64_t(std::llround(double(shares[t].owned) * madePerOwned));
-        shares[t].target = shares[t].owned ? std::min(target, tile.corePoints + tile.haloPoints) : 0;
-    }
-    return shares;
+    if (need.recordCap == 0) return probe.At(need.level) != nullptr;
+    // A record shorter than its cap holds every step the tile has.
+    return probe.recordLevel == need.level && (probe.recordCap >= need.recordCap || probe.Steps() < probe.recordCap);
 }
 
 namespace {
@@ -85,37 +56,50 @@ std::vector<std::size_t> TilesLacking(const std::vector<TileProbe> &probes, cons
     return lacking;
 }
 
-/// The tiles' splits at the level taken in priority order (ties by tile, then by order within
-/// it) until the owned clusters reach the target, or the records run out: `taken` and
-/// `addedOwned` per tile.
-void TakeSplits(const std::vector<TileProbe> &probes, std::uint64_t owned, std::uint64_t target,
-                std::vector<std::uint64_t> &taken, std::vector<std::uint64_t> &addedOwned)
+/// The tiles' steps at the level (`steps` of each probe: its splits or its merges) taken in
+/// priority order (`before`; ties by tile, then by order within it) until the owned clusters reach
+/// the target, or the records run out: `taken` and `changedOwned` (the steps that add or take
+/// away an owned cluster, `changesOwned`) per tile.
+template <class Key, class Before>
+void TakeSteps(const std::vector<TileProbe> &probes, std::vector<Key> TileProbe::*steps, bool Key::*changesOwned,
+               Before before, std::uint64_t owned, std::uint64_t target, std::vector<std::uint64_t> &taken,
+               std::vector<std::uint64_t> &changedOwned)
 {
     struct Entry
     {
-        const SplitKey *key;
+        const Key *key;
         std::size_t tile, order;
     };
     std::vector<Entry> entries;
     for (std::size_t t = 0; t < probes.size(); ++t)
-        for (std::size_t k = 0; k < probes[t].splits.size(); ++k) entries.push_back({&probes[t].splits[k], t, k});
-    // Along a tile's record the priorities never rise (SplitKey), so what the order takes of each
-    // tile is a prefix of its record: the splits its run at the count makes.
-    std::sort(entries.begin(), entries.end(), [](const Entry &a, const Entry &b) {
-        if (a.key->error != b.key->error) return a.key->error > b.key->error;
-        if (a.key->size != b.key->size) return a.key->size > b.key->size;
+        for (std::size_t k = 0; k < (probes[t].*steps).size(); ++k) entries.push_back({&(probes[t].*steps)[k], t, k});
+    // Along a tile's record no step comes before the one ahead of it (SplitKey, MergeKey), so what
+    // the order takes of each tile is a prefix of its record: the steps its run at the count makes.
+    std::sort(entries.begin(), entries.end(), [&before](const Entry &a, const Entry &b) {
+        if (before(*a.key, *b.key)) return true;
+        if (before(*b.key, *a.key)) return false;
         return a.tile != b.tile ? a.tile < b.tile : a.order < b.order;
     });
     taken.assign(probes.size(), 0);
-    addedOwned.assign(probes.size(), 0);
-    for (std::size_t e = 0; e < entries.size() && owned < target; ++e) {
+    changedOwned.assign(probes.size(), 0);
+    const bool up = owned < target;
+    for (std::size_t e = 0; e < entries.size() && owned != target; ++e) {
         ++taken[entries[e].tile];
-        if (entries[e].key->addsOwned) {
-            ++addedOwned[entries[e].tile];
-            ++owned;
+        if (entries[e].key->*changesOwned) {
+            ++changedOwned[entries[e].tile];
+            owned = up ? owned + 1 : owned - 1;
         }
     }
 }
+
+/// Whether split a comes before split b: the larger error, then the larger cluster.
+bool SplitBefore(const SplitKey &a, const SplitKey &b)
+{
+    return a.error != b.error ? a.error > b.error : a.size > b.size;
+}
+
+/// Whether merge a comes before merge b: the lower cost.
+bool MergeBefore(const MergeKey &a, const MergeKey &b) { return a.cost < b.cost; }
 
 } // namespace
 
@@ -141,28 +125,31 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
     }
     decision.shares.target = manifest.targetCount;
     decision.shares.level = level;
-    if (owned >= manifest.targetCount) { // merged down, or as many
-        decision.shares.tiles = ShareByOwned(manifest, counts);
-        decision.shared = true;
-        return decision;
+    const bool merging = owned > manifest.targetCount;
+    if (owned != manifest.targetCount) {
+        const std::uint64_t off = merging ? owned - manifest.targetCount : manifest.targetCount - owned;
+        decision.needs.clear();
+        for (std::size_t t = 0; t < probes.size(); ++t) {
+            // Its part of the clusters missing or in excess (by its owned ones) times its made-to-owned ratio.
+            const unsigned __int128 part = owned ? ((unsigned __int128)off * counts[t].clusters + owned - 1) / owned : off;
+            std::uint64_t cap = std::max(kMinRecordCap, std::uint64_t(std::min<unsigned __int128>(2 * part, kMaxCount)));
+            if (probes[t].recordLevel == level) cap = std::max(cap, probes[t].recordCap); // grown before
+            decision.needs.push_back({level, cap, merging});
+        }
+        if (lacking()) return decision;
     }
-    const std::uint64_t missing = manifest.targetCount - owned;
-    decision.needs.clear();
-    for (std::size_t t = 0; t < probes.size(); ++t) {
-        // Its part of the missing clusters (by its owned ones) times its made-to-owned ratio.
-        const unsigned __int128 part = owned ? ((unsigned __int128)missing * counts[t].clusters + owned - 1) / owned : missing;
-        std::uint64_t cap = std::max(kMinSplitCap, std::uint64_t(std::min<unsigned __int128>(2 * part, kMaxCount)));
-        if (probes[t].splitLevel == level) cap = std::max(cap, probes[t].splitCap); // grown before
-        decision.needs.push_back({level, cap});
-    }
-    if (lacking()) return decision;
-    std::vector<std::uint64_t> taken, addedOwned;
-    TakeSplits(probes, owned, manifest.targetCount, taken, addedOwned);
+    std::vector<std::uint64_t> taken(probes.size(), 0), changedOwned(probes.size(), 0);
+    if (merging)
+        TakeSteps(probes, &TileProbe::merges, &MergeKey::removesOwned, MergeBefore, owned, manifest.targetCount, taken,
+                  changedOwned);
+    else if (owned < manifest.targetCount)
+        TakeSteps(probes, &TileProbe::splits, &SplitKey::addsOwned, SplitBefore, owned, manifest.targetCount, taken,
+                  changedOwned);
     bool grows = false;
     for (std::size_t t = 0; t < probes.size(); ++t) {
         const TileProbe &p = probes[t];
-        if (p.splits.size() == p.splitCap && taken[t] == p.splits.size()) {
-            decision.needs[t].splitCap = 2 * p.splitCap;
+        if (taken[t] > 0 && taken[t] == p.Steps() && p.Steps() == p.recordCap) {
+            decision.needs[t].recordCap = 2 * p.recordCap;
             grows = true;
         }
     }
@@ -170,9 +157,10 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
     for (std::size_t t = 0; t < probes.size(); ++t) {
         TileShare share;
         share.id = manifest.tiles[t].id;
-        share.owned = counts[t].owned + addedOwned[t];
+        share.owned = merging ? counts[t].owned - changedOwned[t] : counts[t].owned + changedOwned[t];
         const TileEntry &tile = manifest.tiles[t];
-        share.target = share.owned ? std::min(counts[t].clusters + taken[t], tile.corePoints + tile.haloPoints) : 0;
+        const std::uint64_t made = merging ? counts[t].clusters - taken[t] : counts[t].clusters + taken[t];
+        share.target = share.owned ? std::min(made, tile.corePoints + tile.haloPoints) : 0;
         decision.shares.tiles.push_back(share);
     }
     decision.shared = true;
@@ -181,20 +169,27 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
 
 bool WriteProbe(const std::string &dir, const TileProbe &probe, std::string &error)
 {
-    json levels = json::array(), errors = json::array(), sizes = json::array(), addsOwned = json::array();
+    json levels = json::array(), errors = json::array(), sizes = json::array(), addsOwned = json::array(),
+         costs = json::array(), removesOwned = json::array();
     for (const LevelCount &c : probe.levels) levels.push_back({c.level, c.clusters, c.owned});
     for (const SplitKey &k : probe.splits) {
         errors.push_back(k.error);
         sizes.push_back(k.size);
         addsOwned.push_back(k.addsOwned ? 1 : 0);
     }
+    for (const MergeKey &k : probe.merges) {
+        costs.push_back(k.cost);
+        removesOwned.push_back(k.removesOwned ? 1 : 0);
+    }
     return WriteJsonFile(TilePath(dir, probe.id, ".probe"),
                          {{"levels", levels},
-                          {"split_level", probe.splitLevel},
-                          {"split_cap", probe.splitCap},
+                          {"record_level", probe.recordLevel},
+                          {"record_cap", probe.recordCap},
                           {"split_error", errors},
                           {"split_size", sizes},
-                          {"split_adds_owned", addsOwned}},
+                          {"split_adds_owned", addsOwned},
+                          {"merge_cost", costs},
+                          {"merge_removes_owned", removesOwned}},
                          error);
 }
 
@@ -214,18 +209,26 @@ bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &er
                 throw std::runtime_error("a level's counts are out of range");
             probe.levels.push_back(count);
         }
-        probe.splitLevel = j.at("split_level").get<int>();
-        probe.splitCap = j.at("split_cap").get<std::uint64_t>();
-        if (probe.splitCap > kMaxCount) throw std::runtime_error("the split cap is out of range");
+        probe.recordLevel = j.at("record_level").get<int>();
+        probe.recordCap = j.at("record_cap").get<std::uint64_t>();
+        if (probe.recordCap > kMaxCount) throw std::runtime_error("the record cap is out of range");
         const json &errors = j.at("split_error"), &sizes = j.at("split_size"), &addsOwned = j.at("split_adds_owned");
-        if (errors.size() != sizes.size() || errors.size() != addsOwned.size() || errors.size() > probe.splitCap)
-            throw std::runtime_error("the split records differ in length or exceed their cap");
+        const json &costs = j.at("merge_cost"), &removesOwned = j.at("merge_removes_owned");
+        if (errors.size() != sizes.size() || errors.size() != addsOwned.size() || costs.size() != removesOwned.size())
+            throw std::runtime_error("the step records differ in length");
+        if ((!errors.empty() && !costs.empty()) || errors.size() + costs.size() > probe.recordCap)
+            throw std::runtime_error("the step records hold both splits and merges, or exceed their cap");
         for (std::size_t k = 0; k < errors.size(); ++k) {
             const SplitKey key{errors[k].get<double>(), sizes[k].get<int>(), addsOwned[k].get<int>() != 0};
             const bool rises = k > 0 && (key.error > probe.splits.back().error ||
                                          (key.error == probe.splits.back().error && key.size > probe.splits.back().size));
             if (rises) throw std::runtime_error("the split priorities rise"); // JSON numbers are finite
             probe.splits.push_back(key);
+        }
+        for (std::size_t k = 0; k < costs.size(); ++k) {
+            const MergeKey key{costs[k].get<double>(), removesOwned[k].get<int>() != 0};
+            if (k > 0 && key.cost < probe.merges.back().cost) throw std::runtime_error("the merge costs fall");
+            probe.merges.push_back(key);
         }
     } catch (const std::exception &e) {
         error = path + " is not valid: " + e.what();

@@ -2,17 +2,19 @@
 // "Size controls").
 //
 // The whole run reaches its target from the clusters of one Gaussian sphere level, split where
-// the L2,1 error is largest (or merged where neighbours are most alike): a detailed region gets
-// more surfels than a flat one of as many points. The tiles follow it:
+// the L2,1 error is largest or merged where neighbours are most alike, in one queue over the
+// whole input: a detailed region gets more surfels than a flat one of as many points. The tiles
+// follow it:
 //   1. `gstile probe`, in rounds: each tile counts the clusters it makes and owns at the levels
 //      the level search asks for (LevelSearch over the tiles' summed owned counts: the level the
-//      whole input gives), then records, at that level, the priorities of its splits in order
-//      and which of them add a cluster it owns;
-//   2. `gstile share`: the splits of all tiles taken in priority order until the owned counts
+//      whole input gives), then records, at that level, its splits (or, when the level gives too
+//      many, its merges) in order: their priorities and which of them add (take away) a cluster
+//      it owns;
+//   2. `gstile share`: the steps of all tiles taken in priority order until the owned counts
 //      sum to the target (one threshold on the priority for every tile, as in the whole run's
-//      single queue); each tile runs at the level with its clusters plus its splits taken, and
-//      should keep its clusters owned plus the owned ones its splits add. A level that gives
-//      too many is merged down instead, the target shared in proportion to the owned counts.
+//      single queue); each tile runs at the level with its clusters plus its splits taken (less
+//      its merges taken), and should keep its clusters owned plus (less) the owned ones its steps
+//      add (take away).
 // `gstile run` then resamples each tile at the level to its count and keeps what it owns. It
 // records what it kept (TileOutcome), and
 //   3. `gstile adjust`: each tile whose kept surfels (its result and the spare surfels the merge
@@ -53,24 +55,37 @@ struct SplitKey
     bool addsOwned = false;
 };
 
+/// One of a tile's merges towards a count (vcg::gaussphere::CountMerge): its cost, and whether it
+/// takes away a cluster the tile owns (of the two merged, the one whose anchor comes second: the
+/// merged cluster keeps the first anchor). Along a record the costs never fall: the recorded cost
+/// is the highest so far (a merged cluster's pairs can cost less than a merge before them).
+struct MergeKey
+{
+    double cost = 0;
+    bool removesOwned = false;
+};
+
 /// What a tile's probes found.
 struct TileProbe
 {
     int id = 0;
     std::vector<LevelCount> levels;
-    int splitLevel = 0;            ///< the level of `splits` (0: none recorded)
-    std::uint64_t splitCap = 0;    ///< the splits asked for
-    std::vector<SplitKey> splits;  ///< in order; fewer than splitCap when the tile had no more
+    int recordLevel = 0;           ///< the level of `splits` or `merges` (0: none recorded)
+    std::uint64_t recordCap = 0;   ///< the steps asked for
+    std::vector<SplitKey> splits;  ///< in order; fewer than recordCap when the tile had no more
+    std::vector<MergeKey> merges;  ///< ... when the level gives more clusters than the target
 
     const LevelCount *At(int level) const;
+    std::size_t Steps() const { return splits.size() + merges.size(); }
 };
 
-/// What the next probe of a tile must find: its counts at `level` (splitCap 0), or its first
-/// splitCap splits at `level`.
+/// What the next probe of a tile must find: its counts at `level` (recordCap 0), or its first
+/// recordCap steps (splits or merges, as the level's count lies below or above the target) there.
 struct ProbeNeed
 {
     int level = 0;
-    std::uint64_t splitCap = 0;
+    std::uint64_t recordCap = 0;
+    bool merges = false; ///< the steps are merges
 };
 
 /// Whether `probe` holds what `need` asks for.
@@ -107,25 +122,19 @@ struct ShareDecision
     Shares shares;                ///< when shared
 };
 
-/// The fewest splits a tile records: a tile owning a small part of the scan still records enough
+/// The fewest steps a tile records: a tile owning a small part of the scan still records enough
 /// to take its part of the threshold.
-constexpr std::uint64_t kMinSplitCap = 64;
+constexpr std::uint64_t kMinRecordCap = 64;
 
 /// Decides from `probes` (one per tile of `manifest`, in its order; a tile not probed yet has no
 /// levels) with the level search of the tiles' parameters (start level, mergeWithin). At the level
-/// found, each tile records twice its part of the clusters missing (by the clusters it owns there)
-/// times its ratio of made to owned clusters, at least kMinSplitCap: its record interleaves splits
-/// of its halo's clusters with its own. A
-/// record cut short by its cap and taken whole may hide splits above the threshold: that tile
-/// records twice as many, until the threshold falls inside every cut record.
+/// found, each tile records twice its part of the clusters missing or in excess (by the clusters
+/// it owns there) times its ratio of made to owned clusters, at least kMinRecordCap: its record
+/// interleaves steps on its halo's clusters with its own. A record cut short by its cap and taken
+/// whole may hide steps before the threshold: that tile records twice as many, until the
+/// threshold falls inside every cut record.
 ShareDecision DecideShares(const Manifest &manifest, int startLevel, double mergeWithin,
                            const std::vector<TileProbe> &probes);
-
-/// The target shared in proportion to the tiles' owned counts at one level (`counts`, one per
-/// tile of the manifest, in its order), largest remainders first, so that the shares sum to the
-/// target exactly; each share turned into a run count by the tile's ratio of made to owned
-/// clusters, capped by its points.
-std::vector<TileShare> ShareByOwned(const Manifest &manifest, const std::vector<LevelCount> &counts);
 
 /// What `gstile run` kept of a tile with a target, beside its result.
 typedef TileTrial TileOutcome;

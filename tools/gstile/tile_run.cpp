@@ -73,13 +73,14 @@ bool WriteResult(const std::string &path, const std::vector<Surfel> &surfels, st
 
 namespace {
 
-/// Per surfel of `result`, its anchor: the vertex of its member with the smallest input index
-/// (indices.size() for a surfel without members).
-std::vector<std::size_t> Anchors(const ResamplingResult &result, const std::vector<std::uint64_t> &indices)
+/// Per cluster of `representative` (each vertex's cluster, -1 for none), its anchor: the vertex of
+/// its member with the smallest input index (indices.size() for a cluster without members).
+std::vector<std::size_t> Anchors(const IndexArray &representative, std::size_t clusters,
+                                 const std::vector<std::uint64_t> &indices)
 {
-    std::vector<std::size_t> anchor(result.surfels.size(), indices.size());
+    std::vector<std::size_t> anchor(clusters, indices.size());
     for (std::size_t v = 0; v < indices.size(); ++v) {
-        const int s = result.representative[v];
+        const int s = representative[v];
         if (s < 0) continue;
         std::size_t &a = anchor[std::size_t(s)];
         if (a == indices.size() || indices[v] < indices[a]) a = v;
@@ -92,7 +93,7 @@ std::vector<std::size_t> Anchors(const ResamplingResult &result, const std::vect
 std::vector<bool> OwnedSurfels(const ResamplingResult &result, const std::vector<std::uint64_t> &indices,
                                std::uint64_t corePoints)
 {
-    const std::vector<std::size_t> anchor = Anchors(result, indices);
+    const std::vector<std::size_t> anchor = Anchors(result.representative, result.surfels.size(), indices);
     std::vector<bool> owned(anchor.size());
     for (std::size_t s = 0; s < anchor.size(); ++s) owned[s] = anchor[s] < corePoints;
     return owned;
@@ -185,10 +186,11 @@ namespace {
 std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoints)
 {
     const ResamplingResult &result = tile.result;
-    std::vector<std::size_t> anchor = Anchors(result, tile.indices);
-    std::vector<SplitKey> keys(result.targetSplits.size());
+    std::vector<std::size_t> anchor = Anchors(result.representative, result.surfels.size(), tile.indices);
+    const std::vector<CountSplit> &splits = result.targetRecord.splits;
+    std::vector<SplitKey> keys(splits.size());
     for (std::size_t k = keys.size(); k-- > 0;) {
-        const CountSplit &split = result.targetSplits[k];
+        const CountSplit &split = splits[k];
         const std::size_t kept = anchor[std::size_t(split.cluster)], added = anchor[std::size_t(split.added)];
         const bool addedFirst = added != tile.indices.size() && (kept == tile.indices.size() || tile.indices[added] < tile.indices[kept]);
         // The part holding the whole cluster's anchor keeps the cluster's ownership; the other is the one added.
@@ -203,6 +205,27 @@ std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoi
             key.error = before.error;
             key.size = before.size;
         }
+    }
+    return keys;
+}
+
+/// The merge record of a tile resampled to a count without exchanges: for each merge, whether it
+/// took away an owned cluster, found by following the anchors of the level's clusters through the
+/// merges (the merged cluster's anchor is the smaller of its parts'); the costs as MergeKey keeps
+/// them, never falling.
+std::vector<MergeKey> MergeKeys(const ResampledTile &tile, std::uint64_t corePoints)
+{
+    const CountRecord &record = tile.result.targetRecord;
+    const IndexArray &level = record.levelRepresentative;
+    const int clusters = level.empty() ? 0 : *std::max_element(level.begin(), level.end()) + 1;
+    std::vector<std::size_t> anchor = Anchors(level, std::size_t(clusters), tile.indices);
+    const std::size_t none = tile.indices.size();
+    std::vector<MergeKey> keys;
+    for (const CountMerge &merge : record.merges) {
+        std::size_t first = anchor[std::size_t(merge.kept)], second = anchor[std::size_t(merge.gone)];
+        if (second != none && (first == none || tile.indices[second] < tile.indices[first])) std::swap(first, second);
+        anchor[std::size_t(merge.kept)] = first;
+        keys.push_back({keys.empty() ? merge.cost : std::max(merge.cost, keys.back().cost), second < corePoints});
     }
     return keys;
 }
@@ -228,7 +251,7 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
     const ProbeNeed need = figures.need = decision.needs[index];
     bool ok = true;
     ResampledTile tile;
-    if (need.splitCap == 0) {
+    if (need.recordCap == 0) {
         ok = ResampleTile(dir, manifest, *entry, [&need](ResamplingParams &param) {
             param.subdivisionLevel = need.level;
             param.fitOffsets = false; // the counts are the clusters'
@@ -238,19 +261,21 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
             probe.levels.push_back(figures.counts);
         }
     } else {
-        // The decision asks for splits at a level only once every tile has its counts there.
-        const std::uint64_t points = entry->corePoints + entry->haloPoints;
-        const std::uint64_t count = std::min(points, probe.At(need.level)->clusters + need.splitCap);
+        // The decision asks for steps at a level only once every tile has its counts there.
+        const std::uint64_t points = entry->corePoints + entry->haloPoints, made = probe.At(need.level)->clusters;
+        const std::uint64_t count = need.merges ? made - std::min(made - 1, need.recordCap)
+                                                : std::min(points, made + need.recordCap);
         ok = ResampleTile(dir, manifest, *entry, [&](ResamplingParams &param) {
             AtShare(need.level, count)(param);
-            param.maxErrorExchanges = 0; // the splits alone, recorded
+            param.maxErrorExchanges = 0; // the steps alone, recorded
             param.fitOffsets = false;
         }, tile, error);
         if (ok) {
-            probe.splitLevel = need.level;
-            probe.splitCap = need.splitCap;
+            probe.recordLevel = need.level;
+            probe.recordCap = need.recordCap;
             probe.splits = SplitKeys(tile, entry->corePoints);
-            figures.splits = probe.splits.size();
+            probe.merges = MergeKeys(tile, entry->corePoints);
+            figures.steps = probe.Steps();
         }
     }
     ok = ok && WriteProbe(dir, probe, error);
@@ -265,13 +290,14 @@ std::string ProbeLine(const ProbeFigures &f, std::size_t position, std::size_t t
     char line[200];
     if (!f.probed)
         std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d has what the share needs", position, tileCount, f.id);
-    else if (f.need.splitCap == 0)
+    else if (f.need.recordCap == 0)
         std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, level %d: %llu clusters, %llu owned, %.2f s", position,
                       tileCount, f.id, f.need.level, (unsigned long long)f.counts.clusters,
                       (unsigned long long)f.counts.owned, f.seconds);
     else
-        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, level %d: %zu splits recorded of %llu asked, %.2f s",
-                      position, tileCount, f.id, f.need.level, f.splits, (unsigned long long)f.need.splitCap, f.seconds);
+        std::snprintf(line, sizeof line, "[probe] %zu/%zu: tile %d, level %d: %zu %s recorded of %llu asked, %.2f s",
+                      position, tileCount, f.id, f.need.level, f.steps, f.need.merges ? "merges" : "splits",
+                      (unsigned long long)f.need.recordCap, f.seconds);
     return line;
 }
 

@@ -57,13 +57,13 @@ struct ProbeFigures
     int id = 0;
     bool probed = false;  ///< false: the tile's probe held what the share needs already
     ProbeNeed need;
-    LevelCount counts;    ///< need.splitCap == 0: the counts at need.level
-    std::size_t splits = 0; ///< else: the splits recorded
+    LevelCount counts;    ///< need.recordCap == 0: the counts at need.level
+    std::size_t steps = 0; ///< else: the splits or merges recorded
     double seconds = 0;
 };
 
 /// With a target: resamples tile `id` as the probes so far need (target_share.h: its counts at a
-/// level, or its splits at the level) and adds what it found to its probe; nothing when the tile
+/// level, or its splits or merges at the level) and adds what it found to its probe; nothing when the tile
 /// has it already or the shares are decided.
 bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFigures &figures, std::string &error);
 

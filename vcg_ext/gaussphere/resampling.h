@@ -123,13 +123,23 @@ struct ResamplingStats
     }
 };
 
+/// The steps from a level's clusters to a target count (SplitToCount or MergeToCount).
+struct CountRecord
+{
+    /// The splits, as surfel indices (the clusters keep their index from the split to the surfels).
+    std::vector<CountSplit> splits;
+    /// The merges, as numbered at the level ...
+    std::vector<CountMerge> merges;
+    /// ... and with them, per input vertex, its cluster at the level (-1 if skipped).
+    IndexArray levelRepresentative;
+};
+
 struct ResamplingResult
 {
     std::vector<Surfel> surfels;
     IndexArray representative;       ///< per input vertex: its surfel, or -1 if skipped
-    /// TargetCount without exchanges: the splits that brought the level's clusters up to the count,
-    /// as surfel indices (the clusters keep their index from the split to the surfels).
-    std::vector<CountSplit> targetSplits;
+    /// TargetCount without exchanges: how the level's clusters came to the count.
+    CountRecord targetRecord;
     ResamplingStats stats;
 };
 
@@ -407,7 +417,7 @@ inline std::vector<Surfel> ResampleAtLevel(Run &run)
 /// Merges the most similar neighbouring clusters down to `target`; returns the merged clusters'
 /// links, which the exchanges read. From here on the surfels' fit reads the graph's first
 /// kOffsetNeighbors slots only: the rest goes before the merge's queue exists (32 B a point at k = 16).
-inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target)
+inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, std::vector<CountMerge> *record)
 {
     const auto merging = [&run](double done) {
         return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
@@ -418,7 +428,7 @@ inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target)
     if (!basis) throw ResamplingCancelled();
     KeepFirstSlots(run.graph, kOffsetNeighbors);
     run.stats.mergesForTarget =
-        MergeToCount(*basis, target, run.clusters, [&merging](double done) { return merging(0.2 + 0.8 * done); });
+        MergeToCount(*basis, target, run.clusters, [&merging](double done) { return merging(0.2 + 0.8 * done); }, record);
     if (run.stats.mergesForTarget == kRefinementCancelled) throw ResamplingCancelled();
     return std::move(basis->adjacent);
 }
@@ -449,9 +459,11 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
 
 /// SizeControl::TargetCount: the level found by SearchLevel (or the parameter's, searchLevel
 /// off), its clusters split or merged to the count exactly, then exchanges of clusters that lower
-/// the largest error at that count. `splits` receives the splits when there are no exchanges.
-inline std::vector<Surfel> ResampleToCount(Run &run, std::vector<CountSplit> &splits)
+/// the largest error at that count. `record` receives the splits or merges when there are no
+/// exchanges (levelRepresentative over the `vertices` of the mesh).
+inline std::vector<Surfel> ResampleToCount(Run &run, size_t vertices, CountRecord &record)
 {
+    const bool recorded = run.param.maxErrorExchanges == 0;
     ResamplingStats &stats = run.stats;
     const int target = stats.targetCount = run.param.TargetFor(int(run.points.size()));
     Adopt(run.param.searchLevel ? SearchLevel(run, target) : ClusterAtLevel(run, run.param.subdivisionLevel), run);
@@ -460,14 +472,18 @@ inline std::vector<Surfel> ResampleToCount(Run &run, std::vector<CountSplit> &sp
         ClusterRefiner refiner(run.points, run.normals, run.clusters, 1.0 / (run.weightWidth * run.weightWidth));
         stats.splitsForTarget = refiner.SplitToCount(target, [&run](double done) {
             return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: splitting clusters");
-        }, run.param.maxErrorExchanges > 0 ? nullptr : &splits);
+        }, recorded ? &record.splits : nullptr);
         if (stats.splitsForTarget == kRefinementCancelled) throw ResamplingCancelled();
     }
     // Reads the crease narrowing from every slot of the graph: made before merging cuts it.
     const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
     std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
     const bool merged = run.clusters.clusterCount > target;
-    if (merged) mergedLinks = MergeClustersToCount(run, target);
+    if (merged && recorded) {
+        record.levelRepresentative.assign(vertices, -1);
+        for (size_t i = 0; i < run.points.size(); ++i) record.levelRepresentative[run.source[i]] = run.clusters.label[i];
+    }
+    if (merged) mergedLinks = MergeClustersToCount(run, target, recorded ? &record.merges : nullptr);
     stats.secondsRefinement = run.timer.Lap();
     Report(run.cb, 90, "Gaussian sphere resampling: surfels");
     std::vector<Surfel> surfels;
@@ -574,7 +590,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
     switch (result.stats.sizeMode) {
     case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
-    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, result.targetSplits); break;
+    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, mesh.vert.size(), result.targetRecord); break;
     case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
     }
     detail::Finish(run, result);

@@ -76,6 +76,16 @@ struct CountSplit
     int size = 0;
 };
 
+/// One merge of MergeToCount, in the order made: the two clusters merged, as numbered before
+/// merging (the one whose number the merged cluster carries on first; each a cluster no merge has
+/// taken away yet), and the merge's cost (MergeCostModel). Costs mostly rise along the sequence; a
+/// merged cluster's pairs can cost less than a merge made before.
+struct CountMerge
+{
+    int kept = 0, gone = 0;
+    double cost = 0;
+};
+
 class ClusterRefiner
 {
 public:
@@ -468,8 +478,8 @@ public:
 };
 
 /// Merges the clusters of `top` (not stale), the `merges`-th merge: the smaller adjacency list
-/// goes into the larger one, whose pairs are costed anew.
-inline void MergeCandidate(const MergeQueue::Candidate &top, int merges, MergeQueue &queue,
+/// goes into the larger one, whose pairs are costed anew. Returns the cluster kept.
+inline int MergeCandidate(const MergeQueue::Candidate &top, int merges, MergeQueue &queue,
                            std::vector<std::vector<int>> &adjacent, MergeCostModel &model)
 {
     int keep = top.a, gone = top.b;
@@ -488,6 +498,7 @@ inline void MergeCandidate(const MergeQueue::Candidate &top, int merges, MergeQu
         const int a = std::min(keep, x), b = std::max(keep, x);
         queue.Push({model.Cost(a, b), a, b, merges + 1});
     }
+    return keep;
 }
 
 /// Labels every point with its cluster's root, compacts the clusters, and replaces `adjacent`
@@ -524,9 +535,11 @@ inline void RelabelMerged(int count, MergeQueue &queue, std::vector<std::vector<
 /// (what ClusterAdjacency would give for them), basis.model is spent. `progress(fraction)`, if
 /// given, is called now and then from the calling thread (every few thousand merges: at 20
 /// million points merging takes seconds); when it returns false merging stops and MergeToCount
-/// returns kRefinementCancelled, the clusters unchanged.
+/// returns kRefinementCancelled, the clusters unchanged. `record`, if given, receives the merges
+/// in order.
 inline int MergeToCount(MergeBasis &basis, int target, Clustering &clusters,
-                        const std::function<bool(double)> &progress = nullptr)
+                        const std::function<bool(double)> &progress = nullptr,
+                        std::vector<CountMerge> *record = nullptr)
 {
     const int count = clusters.clusterCount;
     if (target >= count) return 0;
@@ -544,7 +557,8 @@ inline int MergeToCount(MergeBasis &basis, int target, Clustering &clusters,
         }
         const detail::MergeQueue::Candidate top = queue.Pop();
         if (queue.Stale(top)) continue;
-        detail::MergeCandidate(top, merges, queue, adjacent, model);
+        const int kept = detail::MergeCandidate(top, merges, queue, adjacent, model);
+        if (record != nullptr) record->push_back({kept, kept == top.a ? top.b : top.a, top.cost});
         --remaining;
         ++merges;
     }
