@@ -443,7 +443,9 @@ def tiling():
                         [f"{f[(f'whole_{name}', 'wall_s')]} / {f[(f'tiled_{name}', 'wall_s')]}"])
         parts += ["### A target count shared over the tiles", tile_stamp("target", stamp),
                   "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, "
-                  "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole:",
+                  "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
+                  "(below 0: lower tiled; each tile runs the exchanges for the largest error at its own worst points, "
+                  "with the whole run's budget):",
                   md_table(["target", "surfels tiled", "count", "Δ* RMS", "Δ* max", "Δ* p99.9", "L2,1 own",
                             "L2,1 blended", "wall s whole / tiled"], rows)]
     if parts:
