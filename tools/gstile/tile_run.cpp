@@ -263,8 +263,8 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
     } else {
         // The decision asks for steps at a level only once every tile has its counts there.
         const std::uint64_t points = entry->corePoints + entry->haloPoints, made = probe.At(need.level)->clusters;
-        const std::uint64_t count = need.merges ? made - std::min(made - 1, need.recordCap)
-                                                : std::min(points, made + need.recordCap);
+        std::uint64_t count = std::min(points, made + need.recordCap);
+        if (need.merges) count = made > need.recordCap ? made - need.recordCap : std::min<std::uint64_t>(made, 1);
         ok = ResampleTile(dir, manifest, *entry, [&](ResamplingParams &param) {
             AtShare(need.level, count)(param);
             param.maxErrorExchanges = 0; // the steps alone, recorded
