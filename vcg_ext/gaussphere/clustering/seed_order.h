@@ -58,10 +58,15 @@ inline std::uint32_t HashPosition(const vcg::Point3f &p)
 inline IndexArray SeedOrder(const PointArray &points)
 {
     const long long n = (long long)points.size();
-    FlatVector<std::pair<std::uint64_t, int>> keyed(static_cast<size_t>(n));
+    // The hash above the index in one word: half the bytes to sort of a (key, index) pair.
+    FlatVector<std::uint64_t> keyed(static_cast<size_t>(n));
 #pragma omp parallel for schedule(static)
-    for (long long i = 0; i < n; ++i) keyed[size_t(i)] = {HashPosition(points[size_t(i)]), int(i)};
-    return SortedIndices(keyed);
+    for (long long i = 0; i < n; ++i) keyed[size_t(i)] = std::uint64_t(HashPosition(points[size_t(i)])) << 32 | std::uint64_t(i);
+    RadixSortStable(keyed, [](std::uint64_t item) { return item >> 32; });
+    IndexArray order(static_cast<size_t>(n));
+#pragma omp parallel for schedule(static)
+    for (long long s = 0; s < n; ++s) order[size_t(s)] = int(std::uint32_t(keyed[size_t(s)]));
+    return order;
 }
 
 } // namespace gaussphere
