@@ -144,6 +144,7 @@ TEST(ResamplingPipeline, ATargetAtAFixedLevelSplitsThatLevelsClustersAndRecordsT
     ASSERT_GT(atLevel6, atLevel);
     p.targetCount = atLevel6 + 50;
     p.maxErrorExchanges = 0;
+    p.recordCountSteps = true;
     const ResamplingResult searched = gstest::Resample(s, p);
     p.searchLevel = false;
     const ResamplingResult fixed = gstest::Resample(s, p);
@@ -159,6 +160,9 @@ TEST(ResamplingPipeline, ATargetAtAFixedLevelSplitsThatLevelsClustersAndRecordsT
     gstest::ExpectValidResult(fixed, s);
     p.maxErrorExchanges = 4;
     EXPECT_TRUE(gstest::Resample(s, p).targetRecord.splits.empty()) << "exchanges change the clusters: no record";
+    p.maxErrorExchanges = 0;
+    p.recordCountSteps = false;
+    EXPECT_TRUE(gstest::Resample(s, p).targetRecord.splits.empty()) << "not asked for";
 }
 
 // Below the level's count, without exchanges: the merges that reached the count, recorded with
@@ -172,6 +176,7 @@ TEST(ResamplingPipeline, ATargetBelowTheLevelRecordsTheMergesThatGiveItsClusters
     p.targetCount = atLevel / 3;
     p.searchLevel = false;
     p.maxErrorExchanges = 0;
+    p.recordCountSteps = true;
     const ResamplingResult r = gstest::Resample(s, p);
     ASSERT_EQ(int(r.surfels.size()), p.targetCount);
     const CountRecord &record = r.targetRecord;
@@ -194,9 +199,12 @@ TEST(ResamplingPipeline, ATargetBelowTheLevelRecordsTheMergesThatGiveItsClusters
         cheaper += k > 0 && m.cost < record.merges[k - 1].cost;
     }
     EXPECT_LT(cheaper, int(record.merges.size()) / 4) << "the costs mostly rise";
+    EXPECT_LT(record.merges.front().cost, record.merges.back().cost);
     // Each merged cluster of the level is one surfel, and no surfel holds two of them.
     std::vector<int> surfelOf(static_cast<std::size_t>(atLevel), -1), clusterOf(r.surfels.size(), -1);
     for (std::size_t v = 0; v < r.representative.size(); ++v) {
+        ASSERT_GE(record.levelRepresentative[v], 0) << "vertex " << v << ": every point of the sphere is usable";
+        ASSERT_GE(r.representative[v], 0) << "vertex " << v;
         const int c = root(record.levelRepresentative[v]), surfel = r.representative[v];
         if (surfelOf[std::size_t(c)] < 0) surfelOf[std::size_t(c)] = surfel;
         if (clusterOf[std::size_t(surfel)] < 0) clusterOf[std::size_t(surfel)] = c;
@@ -206,6 +214,10 @@ TEST(ResamplingPipeline, ATargetBelowTheLevelRecordsTheMergesThatGiveItsClusters
     p.maxErrorExchanges = 4;
     const CountRecord none = gstest::Resample(s, p).targetRecord;
     EXPECT_TRUE(none.merges.empty() && none.levelRepresentative.empty()) << "exchanges change the clusters: no record";
+    p.maxErrorExchanges = 0;
+    p.recordCountSteps = false;
+    const CountRecord notAsked = gstest::Resample(s, p).targetRecord;
+    EXPECT_TRUE(notAsked.merges.empty() && notAsked.levelRepresentative.empty()) << "not asked for";
 }
 
 /// Largest lambda1 / lambda2 over the clusters big enough to be split.

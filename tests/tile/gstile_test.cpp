@@ -423,8 +423,9 @@ TEST(TargetShare, SplitsAreTakenInPriorityOrderAcrossTheTiles)
     EXPECT_TRUE(Satisfies(cut[1], more.needs[1])) << "a record shorter than its cap holds all the tile's splits";
 }
 
-// A probe file is read back exactly, and one damaged (cut short, its split records of unequal
-// length or rising, counts out of range) is refused with the file named.
+// A probe file is read back exactly, and one damaged (cut short, its step records of unequal
+// length, rising splits or falling merges, more merges than its level allows, counts out of
+// range) is refused with the file named.
 TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
 {
     const std::string dir = ::testing::TempDir() + "gstile_probe_file";
@@ -447,6 +448,17 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
     EXPECT_TRUE(back.splits[2].addsOwned);
     EXPECT_FALSE(ReadProbe(dir, 4, back, error)) << "no probe yet";
     EXPECT_TRUE(error.empty()) << "is not an error";
+    probe.splits.clear();
+    probe.merges = {{0.25, false}, {0.5, true}, {0.5, true}};
+    ASSERT_TRUE(WriteProbe(dir, probe, error)) << error;
+    ASSERT_TRUE(ReadProbe(dir, 3, back, error)) << error;
+    ASSERT_EQ(back.merges.size(), 3u);
+    EXPECT_TRUE(back.splits.empty());
+    EXPECT_EQ(back.merges[0].cost, 0.25);
+    EXPECT_FALSE(back.merges[0].removesOwned);
+    EXPECT_TRUE(back.merges[2].removesOwned);
+    EXPECT_TRUE(Satisfies(back, {4, 6, true}));
+    EXPECT_FALSE(Satisfies(back, {4, 6, false})) << "merges do not answer a need for splits";
 
     const std::string path = TilePath(dir, 3, ".probe");
     const auto refused = [&](const std::string &text, const char *why) {
@@ -478,6 +490,18 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
             "\"split_adds_owned\": [], \"merge_cost\": [0.5], \"merge_removes_owned\": [1, 0]}", "merge lengths differ");
     refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [0.5], \"split_size\": [3], "
             "\"split_adds_owned\": [1], \"merge_cost\": [0.5], \"merge_removes_owned\": [1]}", "splits and merges");
+    refused("{\"levels\": [[4, 3, 1]], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.1, 0.2, 0.3], \"merge_removes_owned\": [0, 0, 0]}",
+            "as many merges as the level has clusters");
+    refused("{\"levels\": [[4, 9, 1]], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.1, 0.2], \"merge_removes_owned\": [1, 1]}",
+            "more owned clusters taken away than owned");
+    refused("{\"levels\": [], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.1], \"merge_removes_owned\": [0]}", "merges at a level not counted");
+    refused("{\"levels\": [[4, 90, 10]], \"record_level\": 4, \"record_cap\": 1, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": [0.1, 0.2], \"merge_removes_owned\": [0, 0]}", "more merges than the cap");
+    refused("{\"levels\": [[4, 90, 10]], \"record_level\": 4, \"record_cap\": 6, \"split_error\": [], \"split_size\": [], "
+            "\"split_adds_owned\": [], \"merge_cost\": 0.1, \"merge_removes_owned\": [0]}", "merges not an array");
 }
 
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
@@ -544,6 +568,7 @@ std::vector<std::uint64_t> OwnedPerTile(const vcg::gaussphere::ResamplingResult 
     }
     std::vector<std::uint64_t> owned(manifest.tiles.size(), 0);
     for (const int v : anchor) {
+        if (v < 0) continue; // a surfel without members (none: ResamplePointSet's postcondition)
         const float p[3] = {points.vert[std::size_t(v)].P()[0], points.vert[std::size_t(v)].P()[1],
                             points.vert[std::size_t(v)].P()[2]};
         const TileEntry *tile = manifest.Find(manifest.grid.IdOf(manifest.grid.CellOf(p)));

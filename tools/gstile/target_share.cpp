@@ -41,6 +41,8 @@ const LevelCount *TileProbe::At(int level) const
 bool Satisfies(const TileProbe &probe, const ProbeNeed &need)
 {
     if (need.recordCap == 0) return probe.At(need.level) != nullptr;
+    // A record of the other kind (a stale or edited file) holds none of the steps asked for.
+    if (need.merges ? !probe.splits.empty() : !probe.merges.empty()) return false;
     // A record shorter than its cap holds every step the tile has.
     return probe.recordLevel == need.level && (probe.recordCap >= need.recordCap || probe.Steps() < probe.recordCap);
 }
@@ -229,6 +231,13 @@ bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &er
             const MergeKey key{costs[k].get<double>(), removesOwned[k].get<int>() != 0};
             if (k > 0 && key.cost < probe.merges.back().cost) throw std::runtime_error("the merge costs fall");
             probe.merges.push_back(key);
+        }
+        if (!probe.merges.empty()) { // merges take clusters away: no more than the level has
+            const LevelCount *level = probe.At(probe.recordLevel);
+            const auto ownedTaken = std::uint64_t(std::count_if(probe.merges.begin(), probe.merges.end(),
+                                                                [](const MergeKey &m) { return m.removesOwned; }));
+            if (level == nullptr || probe.merges.size() >= level->clusters || ownedTaken > level->owned)
+                throw std::runtime_error("the merges do not fit the clusters of their level");
         }
     } catch (const std::exception &e) {
         error = path + " is not valid: " + e.what();

@@ -268,6 +268,7 @@ bool ProbeTile(const std::string &dir, const Manifest &manifest, int id, ProbeFi
         ok = ResampleTile(dir, manifest, *entry, [&](ResamplingParams &param) {
             AtShare(need.level, count)(param);
             param.maxErrorExchanges = 0; // the steps alone, recorded
+            param.recordCountSteps = true;
             param.fitOffsets = false;
         }, tile, error);
         if (ok) {

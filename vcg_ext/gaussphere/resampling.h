@@ -138,7 +138,7 @@ struct ResamplingResult
 {
     std::vector<Surfel> surfels;
     IndexArray representative;       ///< per input vertex: its surfel, or -1 if skipped
-    /// TargetCount without exchanges: how the level's clusters came to the count.
+    /// TargetCount without exchanges, with recordCountSteps: how the level's clusters came to the count.
     CountRecord targetRecord;
     ResamplingStats stats;
 };
@@ -460,10 +460,10 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
 /// SizeControl::TargetCount: the level found by SearchLevel (or the parameter's, searchLevel
 /// off), its clusters split or merged to the count exactly, then exchanges of clusters that lower
 /// the largest error at that count. `record` receives the splits or merges when there are no
-/// exchanges (levelRepresentative over the `vertices` of the mesh).
+/// exchanges and the parameters ask for them (levelRepresentative over the `vertices` of the mesh).
 inline std::vector<Surfel> ResampleToCount(Run &run, size_t vertices, CountRecord &record)
 {
-    const bool recorded = run.param.maxErrorExchanges == 0;
+    const bool recorded = run.param.recordCountSteps && run.param.maxErrorExchanges == 0;
     ResamplingStats &stats = run.stats;
     const int target = stats.targetCount = run.param.TargetFor(int(run.points.size()));
     Adopt(run.param.searchLevel ? SearchLevel(run, target) : ClusterAtLevel(run, run.param.subdivisionLevel), run);

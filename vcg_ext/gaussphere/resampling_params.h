@@ -71,6 +71,9 @@ struct ResamplingParams
     /// TargetCount: search the level (false: split or merge the clusters of subdivisionLevel). Not a
     /// user's parameter: the tiles of a tiled run (tools/gstile) take the level the whole input gives.
     bool searchLevel = true;
+    /// TargetCount without exchanges: keep the splits or merges that reached the count in
+    /// ResamplingResult::targetRecord (the probes of a tiled run read them). Not a user's parameter.
+    bool recordCountSteps = false;
 
     ResamplingTuning tuning;
 
