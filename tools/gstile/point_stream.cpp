@@ -10,6 +10,8 @@
 
 namespace gstile {
 
+constexpr std::size_t PointStream::kChunkPoints; // C++14: its odr-uses (std::min) need a definition
+
 bool IsUsable(const OrientedPoint &point)
 {
     vcg::gaussphere::OrientedPointVertex v; // the resampler's own test, on a detached vertex

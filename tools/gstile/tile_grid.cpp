@@ -5,6 +5,8 @@
 
 namespace gstile {
 
+constexpr int OccupancyHistogram::kCellsOnLongestSide; // C++14: its odr-uses (std::min) need a definition
+
 int TileGrid::Clamp(int a, double t) const
 {
     if (!(t > 0)) return 0;
