@@ -428,26 +428,32 @@ def tiling():
                       md_table(["halo (spacings)", "surfels", "points represented", "Δ* RMS: tiled − whole",
                                 "uncovered points along tile faces",
                                 "surfels kept for border points no tile kept nor covered"], rows)]
-    target = tile_results("target")
-    if target:
-        stamp, f = target
+    for stage, runs, label, title, text in (
+            ("target", ("10000", "40000", "100000"), lambda run: f"{int(run):,}", "A target count shared over the tiles",
+             "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
+             "(below 0: lower tiled; each tile runs the exchanges for the largest error at its own worst points, "
+             "with the whole run's budget):"),
+            ("bound", ("0.002", "0.0005"), lambda run: run, "An error bound over the tiles",
+             "`--max-error E` (a fraction of the whole scan's diagonal) whole and tiled (docs/tiling.md, *Size and "
+             "error controls*); tiled against whole:")):
+        results = tile_results(stage)
+        if not results:
+            continue
+        stamp, f = results
         rows = []
-        for count in ("10000", "40000", "100000"):
-            name = f"target_{count}"
+        for run in runs:
+            name = f"{stage}_{run}"
             if (name, "count_diff_pct") not in f:
                 continue
-            rows.append([f"{int(count):,}", f"{int(f[(name, 'count_tiled')]):,}"] +
+            rows.append([label(run), f"{int(f[(name, 'count_tiled')]):,}"] +
                         [signed_percent(float(f[(name, k)])) for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
                                                                   "delta_p999_diff_pct", "l21_own_rms_diff_pct",
                                                                   "l21_blended_rms_diff_pct")] +
                         [f"{f[(f'whole_{name}', 'wall_s')]} / {f[(f'tiled_{name}', 'wall_s')]}"])
-        parts += ["### A target count shared over the tiles", tile_stamp("target", stamp),
-                  "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, "
-                  "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
-                  "(below 0: lower tiled; each tile runs the exchanges for the largest error at its own worst points, "
-                  "with the whole run's budget):",
-                  md_table(["target", "surfels tiled", "count", "Δ* RMS", "Δ* max", "Δ* p99.9", "L2,1 own",
-                            "L2,1 blended", "wall s whole / tiled"], rows)]
+        parts += [f"### {title}", tile_stamp(stage, stamp),
+                  "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, " + text,
+                  md_table([stage if stage == "target" else "bound", "surfels tiled", "count", "Δ* RMS", "Δ* max",
+                            "Δ* p99.9", "L2,1 own", "L2,1 blended", "wall s whole / tiled"], rows)]
     if parts:
         parts = ["## Tiled resampling",
                  "`gstile` resamples a scan of any size tile by tile ([docs/tiling.md](tiling.md); the benchmark: "

@@ -3,6 +3,7 @@
 #   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
 #   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at three target counts, whole vs tiled
+#   bench/tile/bench_tile.sh WORK_DIR bound     # the dragon at two error bounds, whole vs tiled
 #   bench/tile/bench_tile.sh WORK_DIR flat      # whole vs tiled on flat faces: the drilled box at 5
 #                                               # and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR halo      # the dragon in 13 tiles at halo widths 1-32 spacings
@@ -53,18 +54,21 @@ compare() { # POINTS TILE_POINTS [SHAPE]: the dragon's lines tagged POINTS, anot
   rm -rf "tiles_$tag"
 }
 
-target() { # the dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo
-  local dragon=$here/../shared/data/dragon.ply count
-  for count in 10000 40000 100000; do
-    measure "whole_target_$count" "$bin/tools/gsresample/gsresample" "$dragon" "whole_target_$count.surfel" --target "$count"
-    measure "tiled_target_$count" "$gstile" all "$dragon" "tiled_target_$count.surfel" --target "$count" \
-      --tile-points 150000 --tile-dir "tiles_target_$count"
-    nice "$bin/tools/gstile/gstile_compare" "tiles_target_$count" "whole_target_$count.surfel" \
-      "tiled_target_$count.surfel" > "compare_target_$count.txt"
-    sed "s/^/target_$count /" "compare_target_$count.txt"
-    rm -rf "tiles_target_$count"
-  done
+# whole_and_tiled NAME GSRESAMPLE_OPTIONS...: the dragon (437,645 points) whole and in 13 tiles of
+# at most 150,000 points with their halo, compared; lines prefixed NAME.
+whole_and_tiled() {
+  local name=$1 dragon=$here/../shared/data/dragon.ply
+  shift
+  measure "whole_$name" "$bin/tools/gsresample/gsresample" "$dragon" "whole_$name.surfel" "$@"
+  measure "tiled_$name" "$gstile" all "$dragon" "tiled_$name.surfel" "$@" --tile-points 150000 --tile-dir "tiles_$name"
+  nice "$bin/tools/gstile/gstile_compare" "tiles_$name" "whole_$name.surfel" "tiled_$name.surfel" > "compare_$name.txt"
+  sed "s/^/$name /" "compare_$name.txt"
+  rm -rf "tiles_$name"
 }
+
+target() { local count; for count in 10000 40000 100000; do whole_and_tiled "target_$count" --target "$count"; done; }
+# 0.002 of the diagonal: level 8 meets it on the dragon; 0.0005: clusters split in every tile.
+bound() { local bound; for bound in 0.002 0.0005; do whole_and_tiled "bound_$bound" --max-error "$bound"; done; }
 
 halo() { # the dragon in 13 tiles of at most 150,000 points with their halo, at each halo width
   local dragon=$here/../shared/data/dragon.ply width
@@ -119,9 +123,10 @@ case $stage in
   compare) run() { compare 5000000 1000000; compare 20000000 4000000; } ;;
   big) run() { big; } ;;
   target) run() { target; } ;;
+  bound) run() { bound; } ;;
   flat) run() { compare 5000000 1000000 drilled-box; compare 20000000 4000000 drilled-box; } ;;
   halo) run() { halo; } ;;
-  *) echo "usage: $0 WORK_DIR compare|big|target|flat|halo" >&2; exit 2 ;;
+  *) echo "usage: $0 WORK_DIR compare|big|target|bound|flat|halo" >&2; exit 2 ;;
 esac
 mkdir -p "$here/bench/tile/results"
 { stamp; run; echo "# load average at end $(cut -d' ' -f1-3 /proc/loadavg)"; } | tee "$stage.txt"
