@@ -94,15 +94,6 @@ void TakeSteps(const std::vector<TileProbe> &probes, std::vector<Key> TileProbe:
     }
 }
 
-/// Whether split a comes before split b: the larger error, then the larger cluster.
-bool SplitBefore(const SplitKey &a, const SplitKey &b)
-{
-    return a.error != b.error ? a.error > b.error : a.size > b.size;
-}
-
-/// Whether merge a comes before merge b: the lower cost.
-bool MergeBefore(const MergeKey &a, const MergeKey &b) { return a.cost < b.cost; }
-
 } // namespace
 
 ShareDecision DecideShares(const Manifest &manifest, int startLevel, double mergeWithin,
@@ -222,14 +213,13 @@ bool ReadProbe(const std::string &dir, int id, TileProbe &probe, std::string &er
             throw std::runtime_error("the step records hold both splits and merges, or exceed their cap");
         for (std::size_t k = 0; k < errors.size(); ++k) {
             const SplitKey key{errors[k].get<double>(), sizes[k].get<int>(), addsOwned[k].get<int>() != 0};
-            const bool rises = k > 0 && (key.error > probe.splits.back().error ||
-                                         (key.error == probe.splits.back().error && key.size > probe.splits.back().size));
-            if (rises) throw std::runtime_error("the split priorities rise"); // JSON numbers are finite
+            if (k > 0 && SplitBefore(key, probe.splits.back()))
+                throw std::runtime_error("the split priorities rise"); // JSON numbers are finite
             probe.splits.push_back(key);
         }
         for (std::size_t k = 0; k < costs.size(); ++k) {
             const MergeKey key{costs[k].get<double>(), removesOwned[k].get<int>() != 0};
-            if (k > 0 && key.cost < probe.merges.back().cost) throw std::runtime_error("the merge costs fall");
+            if (k > 0 && MergeBefore(key, probe.merges.back())) throw std::runtime_error("the merge costs fall");
             probe.merges.push_back(key);
         }
         if (!probe.merges.empty()) { // merges take clusters away: no more than the level has

@@ -55,6 +55,12 @@ struct SplitKey
     bool addsOwned = false;
 };
 
+/// Whether split a comes before split b: the larger error, then the larger cluster.
+inline bool SplitBefore(const SplitKey &a, const SplitKey &b)
+{
+    return a.error != b.error ? a.error > b.error : a.size > b.size;
+}
+
 /// One of a tile's merges towards a count (vcg::gaussphere::CountMerge): its cost, and whether it
 /// takes away a cluster the tile owns (of the two merged, the one whose anchor comes second: the
 /// merged cluster keeps the first anchor). Along a record the costs never fall: the recorded cost
@@ -64,6 +70,9 @@ struct MergeKey
     double cost = 0;
     bool removesOwned = false;
 };
+
+/// Whether merge a comes before merge b: the lower cost.
+inline bool MergeBefore(const MergeKey &a, const MergeKey &b) { return a.cost < b.cost; }
 
 /// What a tile's probes found.
 struct TileProbe

@@ -73,6 +73,12 @@ bool WriteResult(const std::string &path, const std::vector<Surfel> &surfels, st
 
 namespace {
 
+/// Whether anchor a (a vertex, or indices.size() for none) has a smaller input index than anchor b.
+bool AnchorBefore(std::size_t a, std::size_t b, const std::vector<std::uint64_t> &indices)
+{
+    return a != indices.size() && (b == indices.size() || indices[a] < indices[b]);
+}
+
 /// Per cluster of `representative` (each vertex's cluster, -1 for none), its anchor: the vertex of
 /// its member with the smallest input index (indices.size() for a cluster without members).
 std::vector<std::size_t> Anchors(const IndexArray &representative, std::size_t clusters,
@@ -83,7 +89,7 @@ std::vector<std::size_t> Anchors(const IndexArray &representative, std::size_t c
         const int s = representative[v];
         if (s < 0) continue;
         std::size_t &a = anchor[std::size_t(s)];
-        if (a == indices.size() || indices[v] < indices[a]) a = v;
+        if (AnchorBefore(v, a, indices)) a = v;
     }
     return anchor;
 }
@@ -192,7 +198,7 @@ std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoi
     for (std::size_t k = keys.size(); k-- > 0;) {
         const CountSplit &split = splits[k];
         const std::size_t kept = anchor[std::size_t(split.cluster)], added = anchor[std::size_t(split.added)];
-        const bool addedFirst = added != tile.indices.size() && (kept == tile.indices.size() || tile.indices[added] < tile.indices[kept]);
+        const bool addedFirst = AnchorBefore(added, kept, tile.indices);
         // The part holding the whole cluster's anchor keeps the cluster's ownership; the other is the one added.
         const std::size_t other = addedFirst ? kept : added;
         keys[k] = {split.error, split.size, other < corePoints};
@@ -201,7 +207,7 @@ std::vector<SplitKey> SplitKeys(const ResampledTile &tile, std::uint64_t corePoi
     for (std::size_t k = 1; k < keys.size(); ++k) {
         const SplitKey &before = keys[k - 1];
         SplitKey &key = keys[k];
-        if (key.error > before.error || (key.error == before.error && key.size > before.size)) {
+        if (SplitBefore(key, before)) {
             key.error = before.error;
             key.size = before.size;
         }
@@ -219,11 +225,10 @@ std::vector<MergeKey> MergeKeys(const ResampledTile &tile, std::uint64_t corePoi
     const IndexArray &level = record.levelRepresentative;
     const int clusters = level.empty() ? 0 : *std::max_element(level.begin(), level.end()) + 1;
     std::vector<std::size_t> anchor = Anchors(level, std::size_t(clusters), tile.indices);
-    const std::size_t none = tile.indices.size();
     std::vector<MergeKey> keys;
     for (const CountMerge &merge : record.merges) {
         std::size_t first = anchor[std::size_t(merge.kept)], second = anchor[std::size_t(merge.gone)];
-        if (second != none && (first == none || tile.indices[second] < tile.indices[first])) std::swap(first, second);
+        if (AnchorBefore(second, first, tile.indices)) std::swap(first, second);
         anchor[std::size_t(merge.kept)] = first;
         keys.push_back({keys.empty() ? merge.cost : std::max(merge.cost, keys.back().cost), second < corePoints});
     }
