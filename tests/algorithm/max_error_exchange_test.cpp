@@ -178,6 +178,48 @@ TEST(MaxErrorExchange, RoundCapHolds)
     EXPECT_EQ(one.stats.exchangeMaxBefore, many.stats.exchangeMaxBefore);
 }
 
+// A tile of a tiled run lowers the largest distance among its core points, which come first: the
+// others are measured and blended alike, but no exchange is made for them. Its part of the whole
+// run's rounds is the first rounds of a run with them all.
+TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    const double diagonal = Diagonal(cube);
+    const gstest::Measured before = gstest::Measure(cube, gstest::Resample(cube, AtTarget(150, 0)));
+    // The points before the worst one count (600 of 3,458).
+    const int first = int(std::max_element(before.distance.begin(), before.distance.end()) - before.distance.begin());
+    const double wholeMax = before.distance[size_t(first)];
+    ASSERT_GT(first, 0);
+    const double countedMax = *std::max_element(before.distance.begin(), before.distance.begin() + first);
+    ASSERT_LT(countedMax, 0.99 * wholeMax);
+
+    ResamplingParams counted = AtTarget(150, 16);
+    counted.largestErrorVertices = first;
+    const ResamplingResult r = gstest::Resample(cube, counted);
+    gstest::ExpectValidResult(r, cube);
+    EXPECT_EQ(int(r.surfels.size()), 150);
+    ASSERT_EQ(r.exchangeMaxima.size(), std::size_t(r.stats.exchangesForMaxError) + 1);
+    EXPECT_GT(r.stats.exchangesForMaxError, 0);
+    EXPECT_NEAR(r.exchangeMaxima.front(), countedMax, 1e-6 * diagonal) << "the largest among the points that count";
+    for (std::size_t k = 1; k < r.exchangeMaxima.size(); ++k) EXPECT_LT(r.exchangeMaxima[k], r.exchangeMaxima[k - 1]);
+    const gstest::Measured after = gstest::Measure(cube, r);
+    EXPECT_LE(*std::max_element(after.distance.begin(), after.distance.begin() + first),
+              r.exchangeMaxima.back() + 1e-6 * diagonal) << "the crease fit raises no counted point above it";
+
+    const ResamplingResult all = gstest::Resample(cube, AtTarget(150, 16));
+    EXPECT_NEAR(all.exchangeMaxima.front(), wholeMax, 1e-6 * diagonal);
+    ResamplingParams everyVertex = AtTarget(150, 16);
+    everyVertex.largestErrorVertices = cube.Size();
+    EXPECT_EQ(gstest::Resample(cube, everyVertex).representative, all.representative) << "every vertex counts: as 0";
+
+    ResamplingParams two = counted;
+    two.exchangeRounds = 2;
+    const ResamplingResult part = gstest::Resample(cube, two);
+    ASSERT_GE(r.stats.exchangesForMaxError, 2);
+    EXPECT_EQ(part.stats.exchangesForMaxError, 2);
+    EXPECT_EQ(part.exchangeMaxima, std::vector<double>(r.exchangeMaxima.begin(), r.exchangeMaxima.begin() + 3));
+}
+
 TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)
 {
     const gstest::PointSet cube = gstest::CubeSurface(24, true);

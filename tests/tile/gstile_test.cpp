@@ -504,6 +504,50 @@ TEST(TargetShare, AProbeFileIsReadBackOrRefusedWithTheFileNamed)
             "\"split_adds_owned\": [], \"merge_cost\": 0.1, \"merge_removes_owned\": [0]}", "merges not an array");
 }
 
+// The whole run makes each exchange at its worst point: the round goes to the tile whose largest
+// distance is highest after the rounds it has, and the rounds end where that tile kept no more.
+TEST(TargetShare, EachRoundOfExchangesGoesToTheTileOfTheWorstPoint)
+{
+    const std::vector<std::vector<double>> maxima = {{5, 4, 3}, {4.5, 1}, {}, {2, 1.5, 1.2, 1}};
+    EXPECT_EQ(ShareExchangeRounds(maxima, 16), (std::vector<int>{2, 1, 0, 0}))
+        << "5, 4.5, 4 taken; at 3 tile 0 kept no more exchanges, and neither would the whole run";
+    EXPECT_EQ(ShareExchangeRounds(maxima, 2), (std::vector<int>{1, 1, 0, 0}));
+    EXPECT_EQ(ShareExchangeRounds(maxima, 0), (std::vector<int>{0, 0, 0, 0}));
+    EXPECT_EQ(ShareExchangeRounds({{3, 2}, {3, 1}}, 16), (std::vector<int>{1, 1}))
+        << "equal maxima: the first tile, then the next worst";
+    EXPECT_EQ(ShareExchangeRounds({{2}, {}}, 16), (std::vector<int>{0, 0})) << "no exchange kept anywhere";
+}
+
+TEST(TargetShare, AnOutcomeIsReadBackOrRefusedWithTheFileNamed)
+{
+    const std::string dir = ::testing::TempDir() + "gstile_outcome";
+    ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+    std::string error;
+    TileOutcome outcome;
+    outcome.target = 120;
+    outcome.owned = 80;
+    outcome.rounds = 3;
+    outcome.maxima = {0.5, 0.25, 0.25, 0.125};
+    ASSERT_TRUE(WriteOutcome(dir, 7, outcome, error)) << error;
+    TileOutcome read;
+    ASSERT_TRUE(ReadOutcome(dir, 7, read, error)) << error;
+    EXPECT_EQ(read.target, 120u);
+    EXPECT_EQ(read.owned, 80u);
+    EXPECT_EQ(read.rounds, 3);
+    EXPECT_EQ(read.maxima, outcome.maxima);
+    const auto refused = [&](const std::string &text, const char *what) {
+        std::ofstream(dir + "/tile_000007.kept") << text;
+        TileOutcome r;
+        std::string e;
+        EXPECT_FALSE(ReadOutcome(dir, 7, r, e)) << what;
+        EXPECT_NE(e.find("tile_000007.kept"), std::string::npos) << what << ": " << e;
+    };
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [0.5, 0.6]}", "a maximum that rises");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [-0.5]}", "a negative maximum");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": -2, \"maxima\": []}", "rounds out of range");
+    refused("{\"target\": 120, \"owned\": 80, \"maxima\": []}", "no rounds");
+}
+
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
 {
     TileShare share;
@@ -691,12 +735,31 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     ASSERT_TRUE(AdjustShares(dir, manifest, first, error)) << error;
     ASSERT_TRUE(PendingTiles(dir, manifest, pending, error)) << error;
     EXPECT_EQ(pending, first.rerun) << "the tiles given a new count are left to run";
+    // The whole run's 16 rounds of exchanges are shared once: a tile takes no more rounds than it
+    // recorded exchanges, and its runs from then on make at most its part.
+    Shares sharedRounds;
+    ASSERT_TRUE(ReadShares(dir, sharedRounds, error)) << error;
+    EXPECT_TRUE(sharedRounds.roundsShared);
+    int roundsInAll = 0;
+    for (const TileShare &share : sharedRounds.tiles) {
+        EXPECT_GE(share.rounds, 0) << "tile " << share.id;
+        roundsInAll += share.rounds;
+    }
+    EXPECT_GT(roundsInAll, 0);
+    EXPECT_LE(roundsInAll, options.param.maxErrorExchanges);
     std::uint64_t rounds = 0;
     for (AdjustFigures round = first; !round.rerun.empty(); ++rounds) {
         for (const int id : round.rerun) ASSERT_TRUE(RunTile(dir, manifest, id, figures, error)) << error;
         ASSERT_TRUE(AdjustShares(dir, manifest, round, error)) << error;
     }
     EXPECT_LE(rounds, kAdjustRounds + 1);
+    ASSERT_TRUE(ReadShares(dir, sharedRounds, error)) << error;
+    for (const TileShare &share : sharedRounds.tiles) {
+        TileOutcome outcome;
+        ASSERT_TRUE(ReadOutcome(dir, share.id, outcome, error)) << error;
+        EXPECT_EQ(outcome.rounds, share.rounds) << "tile " << share.id;
+        EXPECT_LE(outcome.maxima.size(), std::size_t(share.rounds) + 1) << "tile " << share.id;
+    }
     MergeFigures merged;
     ASSERT_TRUE(Merge(dir, manifest, dir + "/merged.surfel", merged, error)) << error;
     // Tiles of 20,000 points whose halos are larger than their cores: the first runs' owned counts

@@ -273,9 +273,12 @@ bool WriteShareList(const std::string &dir, const Shares &shares, std::string &e
     for (const TileShare &s : shares.tiles) {
         json tried = json::array();
         for (const TileTrial &t : s.tried) tried.push_back({t.target, t.owned});
-        list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"tried", tried}});
+        list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"rounds", s.rounds}, {"tried", tried}});
     }
-    return WriteJsonFile(SharesPath(dir), {{"target", shares.target}, {"level", shares.level}, {"tiles", list}}, error);
+    return WriteJsonFile(SharesPath(dir),
+                         {{"target", shares.target}, {"level", shares.level}, {"rounds_shared", shares.roundsShared},
+                          {"tiles", list}},
+                         error);
 }
 
 /// The trial that kept the count nearest to the share (the latest of equals).
@@ -300,11 +303,14 @@ bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
         shares = Shares();
         shares.target = j.at("target").get<std::uint64_t>();
         shares.level = j.at("level").get<int>();
+        shares.roundsShared = j.at("rounds_shared").get<bool>();
         for (const json &t : j.at("tiles")) {
             TileShare share;
             share.id = t.at("id").get<int>();
             share.owned = t.at("owned").get<std::uint64_t>();
             share.target = t.at("target").get<std::uint64_t>();
+            share.rounds = t.at("rounds").get<int>();
+            if (share.rounds < -1) throw std::runtime_error("a tile's rounds of exchanges are out of range");
             for (const json &trial : t.value("tried", json::array()))
                 share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
             shares.tiles.push_back(share);
@@ -348,7 +354,10 @@ bool ReadShare(const std::string &dir, int id, int &level, TileShare &share, std
 
 bool WriteOutcome(const std::string &dir, int id, const TileOutcome &outcome, std::string &error)
 {
-    return WriteJsonFile(TilePath(dir, id, ".kept"), {{"target", outcome.target}, {"owned", outcome.owned}}, error);
+    return WriteJsonFile(TilePath(dir, id, ".kept"),
+                         {{"target", outcome.target}, {"owned", outcome.owned}, {"rounds", outcome.rounds},
+                          {"maxima", outcome.maxima}},
+                         error);
 }
 
 bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::string &error)
@@ -360,6 +369,12 @@ bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::stri
     try {
         outcome.target = j.at("target").get<std::uint64_t>();
         outcome.owned = j.at("owned").get<std::uint64_t>();
+        outcome.rounds = j.at("rounds").get<int>();
+        outcome.maxima = j.at("maxima").get<std::vector<double>>();
+        if (outcome.rounds < -1) throw std::runtime_error("its rounds of exchanges are out of range");
+        for (std::size_t k = 0; k < outcome.maxima.size(); ++k)
+            if (!(outcome.maxima[k] >= 0) || (k > 0 && outcome.maxima[k] > outcome.maxima[k - 1]))
+                throw std::runtime_error("its largest distances are negative or rise");
     } catch (const std::exception &e) {
         error = path + " is not valid: " + e.what();
         return false;
@@ -371,7 +386,7 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
 {
     const bool tried = std::any_of(share.tried.begin(), share.tried.end(),
                                    [&outcome](const TileTrial &t) { return t.target == outcome.target; });
-    if (!tried) share.tried.push_back(outcome);
+    if (!tried) share.tried.push_back({outcome.target, outcome.owned});
     if (outcome.owned == share.owned) return false;
     if (share.tried.size() > kAdjustRounds) { // no new count: the nearest one tried
         share.target = NearestTrial(share).target;
@@ -409,6 +424,22 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
     return true;
 }
 
+std::vector<int> ShareExchangeRounds(const std::vector<std::vector<double>> &maxima, int rounds)
+{
+    std::vector<int> taken(maxima.size(), 0);
+    // The largest distance of tile t after the rounds it has taken.
+    const auto current = [&](std::size_t t) { return maxima[t][std::size_t(taken[t])]; };
+    for (int round = 0; round < rounds; ++round) {
+        std::size_t worst = maxima.size();
+        for (std::size_t t = 0; t < maxima.size(); ++t)
+            if (!maxima[t].empty() && (worst == maxima.size() || current(t) > current(worst))) worst = t;
+        // The worst tile kept no more exchanges: neither would the whole run, at the same point.
+        if (worst == maxima.size() || std::size_t(taken[worst]) + 1 >= maxima[worst].size()) break;
+        ++taken[worst];
+    }
+    return taken;
+}
+
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error)
 {
     Shares all;
@@ -424,6 +455,22 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         }
         if (!ReadOutcome(dir, shares[s].id, outcomes[s], error)) return false;
     }
+    std::vector<bool> rerun(shares.size(), false);
+    if (!all.roundsShared) {
+        vcg::gaussphere::ResamplingParams param;
+        if (!TileParams(manifest, 0, param, error)) return false;
+        std::vector<std::vector<double>> maxima;
+        for (const TileOutcome &o : outcomes) maxima.push_back(o.maxima);
+        const std::vector<int> rounds = ShareExchangeRounds(maxima, param.maxErrorExchanges);
+        for (std::size_t s = 0; s < shares.size(); ++s) {
+            shares[s].rounds = rounds[s];
+            // A run that kept no more exchanges than its part is the run at its part: recorded as such.
+            rerun[s] = outcomes[s].maxima.size() > std::size_t(rounds[s]) + 1;
+            outcomes[s].rounds = rounds[s];
+            if (!rerun[s] && !WriteOutcome(dir, shares[s].id, outcomes[s], error)) return false;
+        }
+        all.roundsShared = true;
+    }
     // What the merge keeps of a tile: its result and its rescued spare surfels (border_points.h).
     Rescues rescues;
     if (!FindRescues(dir, manifest, rescues, error)) return false;
@@ -431,7 +478,9 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         const TileEntry *tile = manifest.Find(shares[s].id);
         outcomes[s].owned += rescues.spares[std::size_t(tile - manifest.tiles.data())].size();
         figures.kept += outcomes[s].owned;
-        if (AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints)) figures.rerun.push_back(shares[s].id);
+        // With its rounds changed, the tile's owned count is not known: it runs at the same count first.
+        if (rerun[s] || AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints))
+            figures.rerun.push_back(shares[s].id);
     }
     return WriteShareList(dir, all, error);
 }
@@ -447,7 +496,8 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
         if (done && manifest.targetCount > 0) {
             const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
             TileOutcome outcome;
-            done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target;
+            done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target &&
+                   outcome.rounds == share->rounds;
             if (!error.empty()) return false;
         }
         if (!done) pending.push_back(tile.id);

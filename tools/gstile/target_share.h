@@ -17,12 +17,15 @@
 //      add (take away).
 // `gstile run` then resamples each tile at the level to its count and keeps what it owns. It
 // records what it kept (TileOutcome), and
-//   3. `gstile adjust`: each tile whose kept surfels (its result and the spare surfels the merge
-//      keeps for its border points, border_points.h) missed its share (the exchanges and the
-//      rescued surfels move a few) gets a new run count, interpolated between the counts tried
-//      (or extrapolated by the made-to-owned ratio of the last one), up to kAdjustRounds times a
-//      tile, and only those tiles run again; `all` and the Dask driver adjust until no tile is
-//      left to run.
+//   3. `gstile adjust`: the first time, the whole run's rounds of exchanges for the largest
+//      error are shared over the tiles, from the largest distance among its core points each
+//      tile's run recorded before and after each of its exchanges (ShareExchangeRounds); the
+//      tiles that kept more than their part run again with it. Each tile whose kept surfels (its
+//      result and the spare surfels the merge keeps for its border points, border_points.h)
+//      missed its share (the exchanges and the rescued surfels move a few) gets a new run count,
+//      interpolated between the counts tried (or extrapolated by the made-to-owned ratio of the
+//      last one), up to kAdjustRounds times a tile, and only those tiles run again; `all` and the
+//      Dask driver adjust until no tile is left to run.
 // What a probe does next is decided from the probes written so far (DecideShares), so any
 // number of workers can probe in any order, and a stopped run resumes where it stopped.
 #ifndef GSTILE_TARGET_SHARE_H
@@ -109,6 +112,7 @@ struct TileTrial
 struct TileShare
 {
     int id = 0;
+    int rounds = -1;          ///< rounds of exchanges its runs make (-1: the whole run's, not shared yet)
     std::uint64_t owned = 0;  ///< the surfels the tile should keep; the shares sum to the target
                               ///< (less when the tiles have fewer clusters to split)
     std::uint64_t target = 0; ///< the count its run resamples to, halo included (0: it keeps nothing)
@@ -120,6 +124,7 @@ struct Shares
 {
     std::uint64_t target = 0;
     int level = 0;
+    bool roundsShared = false; ///< the tiles' rounds of exchanges are shared (ShareExchangeRounds)
     std::vector<TileShare> tiles;
 };
 
@@ -146,7 +151,21 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
                            const std::vector<TileProbe> &probes);
 
 /// What `gstile run` kept of a tile with a target, beside its result.
-typedef TileTrial TileOutcome;
+struct TileOutcome
+{
+    std::uint64_t target = 0, owned = 0; ///< the run's count and the surfels it kept
+    int rounds = -1;                     ///< its rounds of exchanges (TileShare::rounds)
+    /// The largest distance of its core points to the blended surface before the exchanges and
+    /// after each it kept (vcg::gaussphere::ResamplingResult::exchangeMaxima), never rising.
+    std::vector<double> maxima;
+};
+
+/// The whole run's `rounds` of exchanges shared over the tiles, from each tile's `maxima` (its
+/// TileOutcome's, with the whole run's rounds): the whole run's next exchange is at its worst
+/// point, so each round goes to the tile whose largest distance is highest after the rounds it has,
+/// and the sharing ends when that tile kept no more exchanges (the whole run would find none).
+/// Returns each tile's rounds.
+std::vector<int> ShareExchangeRounds(const std::vector<std::vector<double>> &maxima, int rounds);
 
 /// New run counts a tile gets at most: one or two bring nearly every tile onto its share
 /// (docs/tiling.md), and each costs a run of the tile.
@@ -194,12 +213,13 @@ struct AdjustFigures
 };
 
 /// Reads every tile's outcome, border record and the shares, adjusts the tiles whose kept surfels
-/// (rescued ones included) missed their share and writes SharesPath(dir). An error names a tile
-/// that has not run at its share's count.
+/// (rescued ones included) missed their share and writes SharesPath(dir). The first time, with
+/// exchanges, it also shares their rounds (ShareExchangeRounds); a tile that kept more exchanges
+/// than its part runs again. An error names a tile that has not run at its share's count.
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error);
 
-/// The tiles whose result or border record is missing, or whose run was at another count than
-/// their share's.
+/// The tiles whose result or border record is missing, or whose run was at another count or
+/// rounds of exchanges than their share's.
 bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error);
 
 /// False, with an error naming the first of them, when PendingTiles lists a tile.

@@ -322,7 +322,14 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     ResampledTile tile;
     // With a target, a tile whose share is 0 keeps nothing and needs no run.
     const bool run = manifest.targetCount == 0 || share.target > 0;
-    const auto adapt = manifest.targetCount > 0 ? AtShare(level, share.target) : [](ResamplingParams &) {};
+    const auto adapt = [&manifest, &share, entry, level](ResamplingParams &param) {
+        if (manifest.targetCount == 0) return;
+        AtShare(level, share.target)(param);
+        // The tile's part of the whole run's exchanges, for the largest distance among its core
+        // points (its halo's are the other tiles' core points).
+        param.exchangeRounds = share.rounds;
+        param.largestErrorVertices = int(entry->corePoints);
+    };
     if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;
         return false;
@@ -339,7 +346,8 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     // The result last: it marks the tile done (merge.h).
     if (!WriteBorder(dir, id, border, error) || !WriteResult(TilePath(dir, id, ".spare"), spare, error) ||
         !WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
-        (manifest.targetCount > 0 && !WriteOutcome(dir, id, {share.target, kept.size()}, error))) {
+        (manifest.targetCount > 0 &&
+         !WriteOutcome(dir, id, {share.target, kept.size(), share.rounds, tile.result.exchangeMaxima}, error))) {
         error = name + ": " + error;
         return false;
     }

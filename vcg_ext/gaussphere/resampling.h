@@ -140,6 +140,9 @@ struct ResamplingResult
     IndexArray representative;       ///< per input vertex: its surfel, or -1 if skipped
     /// TargetCount without exchanges, with recordCountSteps: how the level's clusters came to the count.
     CountRecord targetRecord;
+    /// TargetCount with exchanges: the largest distance to the blended surface before them and after
+    /// each kept one, in the model's units, over the points that count (largestErrorVertices).
+    std::vector<double> exchangeMaxima;
     ResamplingStats stats;
 };
 
@@ -434,12 +437,19 @@ inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, 
 }
 
 /// The exchanges of clusters for the largest error (max_error_exchange.h); `surfels` receives
-/// the kept set.
+/// the kept set, `maxima` the largest distance before them and after each kept one.
 inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std::vector<int>> *mergedLinks,
-                             std::vector<Surfel> &surfels)
+                             std::vector<Surfel> &surfels, std::vector<double> &maxima)
 {
     MaxErrorExchangeParams exchangeParam;
-    exchangeParam.maxRounds = run.param.maxErrorExchanges;
+    exchangeParam.maxRounds = run.param.exchangeRounds >= 0
+                                  ? std::min(run.param.exchangeRounds, run.param.maxErrorExchanges)
+                                  : run.param.maxErrorExchanges;
+    if (run.param.largestErrorVertices > 0) {
+        exchangeParam.counted.resize(run.points.size());
+        for (size_t i = 0; i < run.points.size(); ++i)
+            exchangeParam.counted[i] = run.source[i] < run.param.largestErrorVertices;
+    }
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
         [&run](int round) {
@@ -454,15 +464,18 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     stats.creaseFitsForMaxError = exchange.creaseFits;
     stats.exchangeMaxBefore = run.diagonal > 0 ? exchange.maxBefore / run.diagonal : 0.0;
     stats.exchangeMaxAfter = run.diagonal > 0 ? exchange.maxAfter / run.diagonal : 0.0;
+    maxima.clear();
+    for (double m : exchange.maxima) maxima.push_back(m / run.scale);
     stats.secondsExchanges = run.timer.Lap();
 }
 
 /// SizeControl::TargetCount: the level found by SearchLevel (or the parameter's, searchLevel
 /// off), its clusters split or merged to the count exactly, then exchanges of clusters that lower
-/// the largest error at that count. `record` receives the splits or merges when there are no
-/// exchanges and the parameters ask for them (levelRepresentative over the `vertices` of the mesh).
-inline std::vector<Surfel> ResampleToCount(Run &run, size_t vertices, CountRecord &record)
+/// the largest error at that count. result.targetRecord receives the splits or merges when there are
+/// no exchanges and the parameters ask for them, result.exchangeMaxima the exchanges' maxima.
+inline std::vector<Surfel> ResampleToCount(Run &run, ResamplingResult &result)
 {
+    CountRecord &record = result.targetRecord;
     const bool recorded = run.param.recordCountSteps && run.param.maxErrorExchanges == 0;
     ResamplingStats &stats = run.stats;
     const int target = stats.targetCount = run.param.TargetFor(int(run.points.size()));
@@ -480,7 +493,7 @@ inline std::vector<Surfel> ResampleToCount(Run &run, size_t vertices, CountRecor
     std::vector<std::vector<int>> mergedLinks; // the merged clusters' links, for the exchanges
     const bool merged = run.clusters.clusterCount > target;
     if (merged && recorded) {
-        record.levelRepresentative.assign(vertices, -1);
+        record.levelRepresentative.assign(result.representative.size(), -1);
         for (size_t i = 0; i < run.points.size(); ++i) record.levelRepresentative[run.source[i]] = run.clusters.label[i];
     }
     if (merged) mergedLinks = MergeClustersToCount(run, target, recorded ? &record.merges : nullptr);
@@ -488,7 +501,7 @@ inline std::vector<Surfel> ResampleToCount(Run &run, size_t vertices, CountRecor
     Report(run.cb, 90, "Gaussian sphere resampling: surfels");
     std::vector<Surfel> surfels;
     if (run.param.maxErrorExchanges > 0) {
-        ExchangeClusters(run, maker, merged ? &mergedLinks : nullptr, surfels);
+        ExchangeClusters(run, maker, merged ? &mergedLinks : nullptr, surfels, result.exchangeMaxima);
     } else {
         surfels = maker.MakeFitted(run.clusters, [&run]() {
             Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
@@ -590,7 +603,7 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
     switch (result.stats.sizeMode) {
     case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
-    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, mesh.vert.size(), result.targetRecord); break;
+    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, result); break;
     case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
     }
     detail::Finish(run, result);

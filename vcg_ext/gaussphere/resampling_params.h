@@ -74,6 +74,14 @@ struct ResamplingParams
     /// TargetCount without exchanges: keep the splits or merges that reached the count in
     /// ResamplingResult::targetRecord (the probes of a tiled run read them). Not a user's parameter.
     bool recordCountSteps = false;
+    /// TargetCount with exchanges: the rounds of exchanges, when fewer than maxErrorExchanges (-1:
+    /// maxErrorExchanges; 0: none, the crease fit after them only). A tile of a tiled run takes its
+    /// part of the whole run's rounds (tools/gstile). Not a user's parameter.
+    int exchangeRounds = -1;
+    /// TargetCount with exchanges: only the mesh's first this many vertices count for the largest
+    /// distance the exchanges lower (0: every vertex). A tile of a tiled run gives its core points,
+    /// which come first: its halo's points are other tiles' to lower. Not a user's parameter.
+    int largestErrorVertices = 0;
 
     ResamplingTuning tuning;
 
@@ -216,6 +224,8 @@ inline std::string ResamplingParams::Validate() const
     for (const ParameterSpec &spec : ParameterTable())
         if (spec.get != nullptr && !spec.Accepts(spec.get(*this)))
             return std::string(spec.name) + " must be " + spec.RangeText();
+    if (exchangeRounds < -1) return "exchangeRounds must be -1 (all of maxErrorExchanges) or at least 0";
+    if (largestErrorVertices < 0) return "largestErrorVertices must be at least 0";
     return tuning.Validate();
 }
 

@@ -14,6 +14,9 @@
 // (the count one higher) is not tried with merges; a merge that raises it again is followed by
 // the next cheapest pair that shares no cluster with it. Rounds go on while an exchange is kept,
 // up to maxRounds.
+// The largest distance may be taken over some of the points only (MaxErrorExchangeParams::counted):
+// a tile of a tiled run lowers its core points', as the whole run's rounds reach them
+// (tools/gstile/target_share.h).
 //
 // Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
@@ -68,7 +71,10 @@ namespace gaussphere {
 /// find one where wider searches do, at half their trials (bench/'s models at 5-30 %).
 struct MaxErrorExchangeParams
 {
-    int maxRounds = 16;      ///< exchanges kept at most
+    int maxRounds = 16;      ///< exchanges kept at most (0: none, the crease fit below only)
+    /// Per point, nonzero where its distance counts for the largest one (empty: every point's).
+    /// The other points are measured and blended alike, but no exchange is made for them.
+    std::vector<char> counted;
     int splitCandidates = 6; ///< clusters at the worst point tried for the split, per round
     int mergeCandidates = 4; ///< cheapest pairs tried for the merge, per split that helps
     /// Last step: the surfels the fit leaves at creases (surfel_offset.h) are fitted too, for the
@@ -91,6 +97,7 @@ struct MaxErrorExchangeResult
     int trials = 0;         ///< surfel sets measured (each split, each split with a merge)
     double maxBefore = 0;   ///< largest distance to the blended surface before, model units
     double maxAfter = 0;    ///< ... and after
+    std::vector<double> maxima; ///< maxBefore, then the largest distance after each kept exchange
     bool cancelled = false; ///< progress returned false
 };
 
@@ -106,8 +113,10 @@ struct MaxErrorExchangeResult
 class BlendedDistances
 {
 public:
-    BlendedDistances(const PointArray &points, const PointArray &normals, double diagonal)
-        : points_(points), normals_(normals), tolerance_(metric_.convergenceTolerance * diagonal)
+    /// `counted`, if not empty, flags the points whose distances count for Max() and Worst().
+    BlendedDistances(const PointArray &points, const PointArray &normals, double diagonal,
+                     std::vector<char> counted = {})
+        : points_(points), normals_(normals), counted_(std::move(counted)), tolerance_(metric_.convergenceTolerance * diagonal)
     {}
 
     /// A measured surfel set: the distances that differ from the current ones.
@@ -145,7 +154,8 @@ public:
         // Trials only look surfels up by centre: the tree is kept, the blending data freed
         // (88 B a surfel; 9 B a point at TargetPercentage 10).
         measured_.reset(new CenterTree(std::move(whole).ReleaseTree()));
-        for (int i = 0; i < n; ++i) KeepWorst(distance_[i], i, max_, worst_);
+        for (int i = 0; i < n; ++i)
+            if (Counts(i)) KeepWorst(distance_[i], i, max_, worst_);
         return true;
     }
 
@@ -165,7 +175,8 @@ public:
         for (int i = 0; i < int(affected.size()); ++i)
             if (affected[i]) m.points.push_back(i);
         ProjectAffected(surfels, m);
-        for (int t = 0; t < int(m.points.size()); ++t) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
+        for (int t = 0; t < int(m.points.size()); ++t)
+            if (Counts(m.points[t])) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
     }
@@ -200,6 +211,8 @@ public:
     }
 
     double Distance(int i) const { return distance_[i]; }
+    /// Whether point i's distance counts for Max() and Worst().
+    bool Counts(int i) const { return counted_.empty() || counted_[size_t(i)] != 0; }
     double Max() const { return max_; }
     int Worst() const { return worst_; }
 
@@ -284,7 +297,7 @@ private:
                     for (const vcg::Point3d &c : moved)
                         if ((c - p).SquaredNorm() <= r2) { affected[i] = 1; break; }
                 }
-                if (!affected[i]) KeepWorst(distance_[i], i, localMax, localWorst);
+                if (!affected[i] && Counts(i)) KeepWorst(distance_[i], i, localMax, localWorst);
             }
 #pragma omp critical
             if (localWorst >= 0 && (untouchedWorst < 0 || localMax > untouchedMax ||
@@ -391,6 +404,7 @@ private:
     }
 
     const PointArray &points_, &normals_;
+    const std::vector<char> counted_; // empty: every point counts
     const BlendParams metric_;
     double tolerance_;
     std::vector<double> distance_;
@@ -507,18 +521,27 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
     if (moves.empty() || !goOn()) return 0;
     const int n = int(points.size());
     const std::vector<float> normalError = distances.NormalErrors(current.fitted);
+    // The figures are over the points that count (MaxErrorExchangeParams::counted); a point that
+    // does not count may not rise above the largest distance either (a tile's halo point is
+    // another tile's core point, and the surfels this tile keeps blend there too).
     double sumOfSquares = 0;
     // One copy of the figures at a time (8 B a point).
-    std::vector<double> figures(points.size());
+    std::vector<double> figures;
+    figures.reserve(points.size());
     for (int i = 0; i < n; ++i) {
-        figures[size_t(i)] = distances.Distance(i);
-        sumOfSquares += figures[size_t(i)] * figures[size_t(i)]; // in point order: the same for any thread count
+        if (!distances.Counts(i)) continue;
+        figures.push_back(distances.Distance(i));
+        sumOfSquares += figures.back() * figures.back(); // in point order: the same for any thread count
     }
-    const double distanceLimit = NearestRankPercentile(std::move(figures), 99.9);
-    figures.assign(normalError.begin(), normalError.end());
+    if (figures.empty()) return 0;
+    const double distanceLimit = NearestRankPercentile(figures, 99.9);
+    figures.clear();
+    for (int i = 0; i < n; ++i)
+        if (distances.Counts(i)) figures.push_back(normalError[size_t(i)]);
     const double normalLimit = NearestRankPercentile(std::move(figures), 99.9);
     int distanceBeyond = 0, normalBeyond = 0;
     for (int i = 0; i < n; ++i) {
+        if (!distances.Counts(i)) continue;
         distanceBeyond += distances.Distance(i) > distanceLimit;
         normalBeyond += normalError[size_t(i)] > normalLimit;
     }
@@ -534,8 +557,15 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         double squares = sumOfSquares;
         int dBeyond = distanceBeyond, nBeyond = normalBeyond;
         std::vector<size_t> rose; // indices into measure.points
+        bool uncountedRose = false; // a point that does not count rose above the largest distance
         for (size_t t = 0; t < measure.points.size(); ++t) {
             const int i = measure.points[t];
+            if (!distances.Counts(i)) {
+                const bool above = measure.distance[t] > distances.Max() && measure.distance[t] > distances.Distance(i);
+                if (above) rose.push_back(t);
+                uncountedRose = uncountedRose || above;
+                continue;
+            }
             const double before = distances.Distance(i), after = measure.distance[t];
             squares += after * after - before * before;
             const bool distanceRose = after > distanceLimit && !(before > distanceLimit);
@@ -545,7 +575,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
             if (distanceRose || normalRose || after > distances.Max()) rose.push_back(t);
         }
         if (!(squares < sumOfSquares)) break;
-        if (measure.max <= distances.Max() && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
+        if (measure.max <= distances.Max() && !uncountedRose && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
             distances.Accept(std::move(measure));
             current.fitted.swap(fitted);
             return int(kept.size());
@@ -726,7 +756,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
 {
     MaxErrorExchangeResult result;
     const int count = clusters.clusterCount;
-    const bool active = count >= 3 && param.maxRounds > 0 && weightWidth > 0;
+    const bool active = count >= 3 && param.maxRounds >= 0 && weightWidth > 0;
     if (!active) {
         surfels = maker.MakeFitted(clusters);
         return result;
@@ -736,7 +766,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         if (progress && !progress(round)) result.cancelled = true;
         return !result.cancelled;
     };
-    BlendedDistances distances(points, normals, diagonal);
+    BlendedDistances distances(points, normals, diagonal, param.counted);
     if (!goOn()) return result; // cancelled: the caller discards the run
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
     // the merges tried with one split, are the clusters of a merge that failed (otherwise the next
@@ -752,6 +782,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         return result;
     }
     result.maxBefore = distances.Max();
+    result.maxima.push_back(result.maxBefore);
     std::vector<char> settled(count, 0);
     // One surfel set for every trial: its buffers (two surfels per cluster) are filled anew, not
     // allocated anew (fresh pages cost more than the copy on a virtual machine).
@@ -764,6 +795,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     for (; round < param.maxRounds && !pairs.Empty() && distances.Max() > 0 && !result.cancelled; ++round) {
         if (!detail::ExchangeRound(state, goOn)) break;
         ++result.exchanges;
+        result.maxima.push_back(distances.Max());
     }
     if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn())
         result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials, goOn);
