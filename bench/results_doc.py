@@ -431,8 +431,8 @@ def tiling():
     for stage, runs, label, title, text in (
             ("target", ("10000", "40000", "100000"), lambda run: f"{int(run):,}", "A target count shared over the tiles",
              "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
-             "(below 0: lower tiled; each tile runs the exchanges for the largest error at its own worst points, "
-             "with the whole run's budget):"),
+             "(below 0: lower tiled; the whole run's rounds of exchanges for the largest error shared over the "
+             "tiles, each at its core points' worst):"),
             ("bound", ("0.002", "0.0005"), lambda run: run, "An error bound over the tiles",
              "`--max-error E` (a fraction of the whole scan's diagonal) whole and tiled (docs/tiling.md, *Size and "
              "error controls*); tiled against whole:")):
