@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A tiled run against the whole run of the same input:
-#   tiled_vs_whole.sh INPUT.ply|generated TILE_POINTS
-# ("generated": the dragon densified to 300,000 points by gsscale, in random order). Checks, from
+#   tiled_vs_whole.sh INPUT.ply|generated TILE_POINTS [GSRESAMPLE OPTIONS...]
+# ("generated": the dragon densified to 300,000 points by gsscale, in random order; the options,
+# e.g. --target N, go to both runs). Checks, from
 # gstile_compare's figures:
 #  - surfel count within 0.5 %; every error figure (RMS, max, 99.9th percentile) within 1 %;
 #  - the points represented within 0.5 % of the input's (no cluster lost or kept twice beyond a
@@ -12,13 +13,14 @@
 # Environment: GSRESAMPLE, GSTILE, GSTILE_COMPARE, WORK_DIR, and GSSCALE for "generated".
 set -euo pipefail
 input=$1 tile_points=$2
+shift 2
 rm -rf "$WORK_DIR" && mkdir -p "$WORK_DIR" && cd "$WORK_DIR"
 if [ "$input" = generated ]; then
   "$GSSCALE" generate --points 300000 --shape dragon --out generated.ply >/dev/null
   input=$PWD/generated.ply
 fi
-"$GSRESAMPLE" "$input" whole.surfel >/dev/null
-"$GSTILE" all "$input" tiled.surfel --tile-points "$tile_points" --tile-dir tiles > tiled.log
+"$GSRESAMPLE" "$input" whole.surfel "$@" >/dev/null
+"$GSTILE" all "$input" tiled.surfel "$@" --tile-points "$tile_points" --tile-dir tiles > tiled.log
 "$GSTILE_COMPARE" tiles whole.surfel tiled.surfel > figures.txt
 cat figures.txt
 

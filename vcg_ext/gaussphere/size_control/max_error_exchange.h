@@ -16,7 +16,8 @@
 // up to maxRounds.
 // The largest distance may be taken over some of the points only (MaxErrorExchangeParams::counted):
 // a tile of a tiled run lowers its core points', as the whole run's rounds reach them
-// (tools/gstile/target_share.h).
+// (tools/gstile/target_share.h); no change may raise another point above it (the tile's halo
+// points are other tiles' core points, where the surfels it keeps blend too).
 //
 // Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
@@ -126,9 +127,13 @@ public:
         std::vector<double> distance;
         std::vector<float> reach;
         std::vector<float> normalError;   ///< |n_q - blended normal| at `points` (the blended L2,1 error)
-        double max = 0;
+        double max = 0;                   ///< over the points that count
         int worst = -1;
+        /// The largest distance of the points that do not count and rose: a change may not raise
+        /// them above the largest distance either (a tile's halo points are other tiles' core).
+        double risenMax = 0;
         std::vector<int> fresh;           ///< surfels that differ from the set Reset measured (ascending)
+        double Largest() const { return std::max(max, risenMax); }
     };
 
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
@@ -175,8 +180,11 @@ public:
         for (int i = 0; i < int(affected.size()); ++i)
             if (affected[i]) m.points.push_back(i);
         ProjectAffected(surfels, m);
-        for (int t = 0; t < int(m.points.size()); ++t)
-            if (Counts(m.points[t])) KeepWorst(m.distance[t], m.points[t], m.max, m.worst);
+        for (int t = 0; t < int(m.points.size()); ++t) {
+            const int i = m.points[t];
+            if (Counts(i)) KeepWorst(m.distance[t], i, m.max, m.worst);
+            else if (m.distance[t] > distance_[i]) m.risenMax = std::max(m.risenMax, m.distance[t]);
+        }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
     }
@@ -521,9 +529,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
     if (moves.empty() || !goOn()) return 0;
     const int n = int(points.size());
     const std::vector<float> normalError = distances.NormalErrors(current.fitted);
-    // The figures are over the points that count (MaxErrorExchangeParams::counted); a point that
-    // does not count may not rise above the largest distance either (a tile's halo point is
-    // another tile's core point, and the surfels this tile keeps blend there too).
+    // The figures are over the points that count (MaxErrorExchangeParams::counted).
     double sumOfSquares = 0;
     // One copy of the figures at a time (8 B a point).
     std::vector<double> figures;
@@ -557,13 +563,10 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         double squares = sumOfSquares;
         int dBeyond = distanceBeyond, nBeyond = normalBeyond;
         std::vector<size_t> rose; // indices into measure.points
-        bool uncountedRose = false; // a point that does not count rose above the largest distance
         for (size_t t = 0; t < measure.points.size(); ++t) {
             const int i = measure.points[t];
-            if (!distances.Counts(i)) {
-                const bool above = measure.distance[t] > distances.Max() && measure.distance[t] > distances.Distance(i);
-                if (above) rose.push_back(t);
-                uncountedRose = uncountedRose || above;
+            if (!distances.Counts(i)) { // it may not rise above the largest distance (Measure::risenMax)
+                if (measure.distance[t] > distances.Max() && measure.distance[t] > distances.Distance(i)) rose.push_back(t);
                 continue;
             }
             const double before = distances.Distance(i), after = measure.distance[t];
@@ -575,7 +578,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
             if (distanceRose || normalRose || after > distances.Max()) rose.push_back(t);
         }
         if (!(squares < sumOfSquares)) break;
-        if (measure.max <= distances.Max() && !uncountedRose && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
+        if (measure.Largest() <= distances.Max() && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
             distances.Accept(std::move(measure));
             current.fitted.swap(fitted);
             return int(kept.size());
@@ -666,7 +669,7 @@ bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std
         for (int i : secondHalf) exchange.Set(i, gone);
         x.maker.Update(x.current, members, x.clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, x.trial);
         BlendedDistances::Measure measure = x.distances.Try(x.current.fitted, x.trial.fitted);
-        if (measure.max < x.distances.Max() - x.rounding) {
+        if (measure.Largest() < x.distances.Max() - x.rounding) {
             exchange.Keep();
             x.distances.Accept(std::move(measure));
             std::swap(x.current, x.trial); // the old set's buffers serve the next trials
@@ -693,7 +696,7 @@ bool TrySplit(ExchangeState &x, const ClusterMembers &members, int c, const std:
     for (int i : secondHalf) split.Set(i, x.count);
     x.clusters.clusterCount = x.count + 1;
     x.maker.Update(x.current, members, x.clusters, {c, x.count}, {firstHalf, secondHalf}, x.trial);
-    const bool splitHelps = x.distances.Try(x.current.fitted, x.trial.fitted).max < x.distances.Max() - x.rounding;
+    const bool splitHelps = x.distances.Try(x.current.fitted, x.trial.fitted).Largest() < x.distances.Max() - x.rounding;
     split.Undo();
     if (!splitHelps) return false;
     return TryMerges(x, members, c, firstHalf, secondHalf, goOn);
