@@ -194,7 +194,7 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
     ASSERT_LT(countedMax, 0.99 * wholeMax);
 
     ResamplingParams counted = AtTarget(150, 16);
-    counted.largestErrorVertices = first;
+    counted.countedVertices = first;
     const ResamplingResult r = gstest::Resample(cube, counted);
     gstest::ExpectValidResult(r, cube);
     EXPECT_EQ(int(r.surfels.size()), 150);
@@ -205,11 +205,16 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
     const gstest::Measured after = gstest::Measure(cube, r);
     EXPECT_LE(*std::max_element(after.distance.begin(), after.distance.begin() + first),
               r.exchangeMaxima.back() + 1e-6 * diagonal) << "the crease fit raises no counted point above it";
+    // No change raised a point that does not count above the largest distance at the time, the
+    // first one at most.
+    for (int i = first; i < cube.Size(); ++i)
+        ASSERT_LE(after.distance[size_t(i)], std::max<double>(before.distance[size_t(i)], r.exchangeMaxima.front()) + 1e-6 * diagonal)
+            << "point " << i;
 
     const ResamplingResult all = gstest::Resample(cube, AtTarget(150, 16));
     EXPECT_NEAR(all.exchangeMaxima.front(), wholeMax, 1e-6 * diagonal);
     ResamplingParams everyVertex = AtTarget(150, 16);
-    everyVertex.largestErrorVertices = cube.Size();
+    everyVertex.countedVertices = cube.Size();
     EXPECT_EQ(gstest::Resample(cube, everyVertex).representative, all.representative) << "every vertex counts: as 0";
 
     ResamplingParams two = counted;

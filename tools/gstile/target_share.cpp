@@ -424,6 +424,14 @@ bool AdjustShare(TileShare &share, const TileOutcome &outcome, std::uint64_t poi
     return true;
 }
 
+bool RanAtRounds(const TileOutcome &outcome, const TileShare &share)
+{
+    // A run with the whole run's rounds that kept no more exchanges than the tile's part is the
+    // run at its part (the exchanges come one after the other).
+    return outcome.rounds == share.rounds ||
+           (outcome.rounds == -1 && share.rounds >= 0 && outcome.maxima.size() <= std::size_t(share.rounds) + 1);
+}
+
 std::vector<int> ShareExchangeRounds(const std::vector<std::vector<double>> &maxima, int rounds)
 {
     std::vector<int> taken(maxima.size(), 0);
@@ -464,10 +472,7 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         const std::vector<int> rounds = ShareExchangeRounds(maxima, param.maxErrorExchanges);
         for (std::size_t s = 0; s < shares.size(); ++s) {
             shares[s].rounds = rounds[s];
-            // A run that kept no more exchanges than its part is the run at its part: recorded as such.
-            rerun[s] = outcomes[s].maxima.size() > std::size_t(rounds[s]) + 1;
-            outcomes[s].rounds = rounds[s];
-            if (!rerun[s] && !WriteOutcome(dir, shares[s].id, outcomes[s], error)) return false;
+            rerun[s] = !RanAtRounds(outcomes[s], shares[s]);
         }
         all.roundsShared = true;
     }
@@ -497,7 +502,7 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
             const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
             TileOutcome outcome;
             done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target &&
-                   outcome.rounds == share->rounds;
+                   RanAtRounds(outcome, *share);
             if (!error.empty()) return false;
         }
         if (!done) pending.push_back(tile.id);

@@ -167,6 +167,10 @@ struct TileOutcome
 /// Returns each tile's rounds.
 std::vector<int> ShareExchangeRounds(const std::vector<std::vector<double>> &maxima, int rounds);
 
+/// Whether `outcome` is of a run at share.rounds: made with them, or with the whole run's rounds
+/// (-1, before they were shared) and no more exchanges kept than share.rounds.
+bool RanAtRounds(const TileOutcome &outcome, const TileShare &share);
+
 /// New run counts a tile gets at most: one or two bring nearly every tile onto its share
 /// (docs/tiling.md), and each costs a run of the tile.
 constexpr std::size_t kAdjustRounds = 3;
@@ -213,9 +217,11 @@ struct AdjustFigures
 };
 
 /// Reads every tile's outcome, border record and the shares, adjusts the tiles whose kept surfels
-/// (rescued ones included) missed their share and writes SharesPath(dir). The first time, with
-/// exchanges, it also shares their rounds (ShareExchangeRounds); a tile that kept more exchanges
-/// than its part runs again. An error names a tile that has not run at its share's count.
+/// (rescued ones included) missed their share and writes SharesPath(dir). The first time it also
+/// shares the rounds of exchanges (ShareExchangeRounds; none at --exchanges 0): a tile that kept
+/// more exchanges than its part runs again (RanAtRounds). It writes no outcome, so a stop before
+/// SharesPath(dir) is written leaves the tile directory as it found it. An error names a tile that
+/// has not run at its share's count.
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error);
 
 /// The tiles whose result or border record is missing, or whose run was at another count or

@@ -328,7 +328,7 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         // The tile's part of the whole run's exchanges, for the largest distance among its core
         // points (its halo's are the other tiles' core points).
         param.exchangeRounds = share.rounds;
-        param.largestErrorVertices = int(entry->corePoints);
+        param.countedVertices = int(entry->corePoints);
     };
     if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;

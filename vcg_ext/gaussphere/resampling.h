@@ -141,7 +141,7 @@ struct ResamplingResult
     /// TargetCount without exchanges, with recordCountSteps: how the level's clusters came to the count.
     CountRecord targetRecord;
     /// TargetCount with exchanges: the largest distance to the blended surface before them and after
-    /// each kept one, in the model's units, over the points that count (largestErrorVertices).
+    /// each kept one, in the model's units, over the points that count (countedVertices).
     std::vector<double> exchangeMaxima;
     ResamplingStats stats;
 };
@@ -445,10 +445,10 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     exchangeParam.maxRounds = run.param.exchangeRounds >= 0
                                   ? std::min(run.param.exchangeRounds, run.param.maxErrorExchanges)
                                   : run.param.maxErrorExchanges;
-    if (run.param.largestErrorVertices > 0) {
+    if (run.param.countedVertices > 0) {
         exchangeParam.counted.resize(run.points.size());
         for (size_t i = 0; i < run.points.size(); ++i)
-            exchangeParam.counted[i] = run.source[i] < run.param.largestErrorVertices;
+            exchangeParam.counted[i] = run.source[i] < run.param.countedVertices;
     }
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,

@@ -81,7 +81,7 @@ struct ResamplingParams
     /// TargetCount with exchanges: only the mesh's first this many vertices count for the largest
     /// distance the exchanges lower (0: every vertex). A tile of a tiled run gives its core points,
     /// which come first: its halo's points are other tiles' to lower. Not a user's parameter.
-    int largestErrorVertices = 0;
+    int countedVertices = 0;
 
     ResamplingTuning tuning;
 
@@ -225,7 +225,7 @@ inline std::string ResamplingParams::Validate() const
         if (spec.get != nullptr && !spec.Accepts(spec.get(*this)))
             return std::string(spec.name) + " must be " + spec.RangeText();
     if (exchangeRounds < -1) return "exchangeRounds must be -1 (all of maxErrorExchanges) or at least 0";
-    if (largestErrorVertices < 0) return "largestErrorVertices must be at least 0";
+    if (countedVertices < 0) return "countedVertices must be at least 0";
     return tuning.Validate();
 }
 

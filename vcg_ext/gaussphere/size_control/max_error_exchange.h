@@ -16,8 +16,8 @@
 // up to maxRounds.
 // The largest distance may be taken over some of the points only (MaxErrorExchangeParams::counted):
 // a tile of a tiled run lowers its core points', as the whole run's rounds reach them
-// (tools/gstile/target_share.h); no change may raise another point above it (the tile's halo
-// points are other tiles' core points, where the surfels it keeps blend too).
+// (tools/gstile/target_share.h); no change may raise another point above it at the time (the
+// tile's halo points are other tiles' core points, where the surfels it keeps blend too).
 //
 // Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
@@ -74,7 +74,8 @@ struct MaxErrorExchangeParams
 {
     int maxRounds = 16;      ///< exchanges kept at most (0: none, the crease fit below only)
     /// Per point, nonzero where its distance counts for the largest one (empty: every point's).
-    /// The other points are measured and blended alike, but no exchange is made for them.
+    /// The other points are measured and blended alike; no exchange is made for them, and no
+    /// change may raise one of them above the largest distance at the time (BlendedDistances::Measure).
     std::vector<char> counted;
     int splitCandidates = 6; ///< clusters at the worst point tried for the split, per round
     int mergeCandidates = 4; ///< cheapest pairs tried for the merge, per split that helps
@@ -114,10 +115,12 @@ struct MaxErrorExchangeResult
 class BlendedDistances
 {
 public:
-    /// `counted`, if not empty, flags the points whose distances count for Max() and Worst().
+    /// `counted`, if given and not empty, flags the points whose distances count for Max() and
+    /// Worst(); it must outlive this object.
     BlendedDistances(const PointArray &points, const PointArray &normals, double diagonal,
-                     std::vector<char> counted = {})
-        : points_(points), normals_(normals), counted_(std::move(counted)), tolerance_(metric_.convergenceTolerance * diagonal)
+                     const std::vector<char> *counted = nullptr)
+        : points_(points), normals_(normals), counted_(counted != nullptr && !counted->empty() ? counted : nullptr),
+          tolerance_(metric_.convergenceTolerance * diagonal)
     {}
 
     /// A measured surfel set: the distances that differ from the current ones.
@@ -129,10 +132,12 @@ public:
         std::vector<float> normalError;   ///< |n_q - blended normal| at `points` (the blended L2,1 error)
         double max = 0;                   ///< over the points that count
         int worst = -1;
-        /// The largest distance of the points that do not count and rose: a change may not raise
-        /// them above the largest distance either (a tile's halo points are other tiles' core).
+        /// The largest distance of the points that do not count and rose by more than the
+        /// projection's tolerance (0: none): a change may not raise them above the largest distance
+        /// either (a tile's halo points are other tiles' core points).
         double risenMax = 0;
         std::vector<int> fresh;           ///< surfels that differ from the set Reset measured (ascending)
+        /// What a change must keep below the largest distance: max, and the points that rose.
         double Largest() const { return std::max(max, risenMax); }
     };
 
@@ -183,7 +188,7 @@ public:
         for (int t = 0; t < int(m.points.size()); ++t) {
             const int i = m.points[t];
             if (Counts(i)) KeepWorst(m.distance[t], i, m.max, m.worst);
-            else if (m.distance[t] > distance_[i]) m.risenMax = std::max(m.risenMax, m.distance[t]);
+            else if (m.distance[t] > distance_[i] + tolerance_) m.risenMax = std::max(m.risenMax, m.distance[t]);
         }
         if (untouchedWorst >= 0 && (untouchedMax > m.max || m.worst < 0)) { m.max = untouchedMax; m.worst = untouchedWorst; }
         return m;
@@ -219,8 +224,10 @@ public:
     }
 
     double Distance(int i) const { return distance_[i]; }
+    /// Distances that differ by less are the same: the tolerance of a projection.
+    double Tolerance() const { return tolerance_; }
     /// Whether point i's distance counts for Max() and Worst().
-    bool Counts(int i) const { return counted_.empty() || counted_[size_t(i)] != 0; }
+    bool Counts(int i) const { return counted_ == nullptr || (*counted_)[size_t(i)] != 0; }
     double Max() const { return max_; }
     int Worst() const { return worst_; }
 
@@ -412,7 +419,7 @@ private:
     }
 
     const PointArray &points_, &normals_;
-    const std::vector<char> counted_; // empty: every point counts
+    const std::vector<char> *counted_; // null: every point counts
     const BlendParams metric_;
     double tolerance_;
     std::vector<double> distance_;
@@ -540,8 +547,9 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         sumOfSquares += figures.back() * figures.back(); // in point order: the same for any thread count
     }
     if (figures.empty()) return 0;
-    const double distanceLimit = NearestRankPercentile(figures, 99.9);
-    figures.clear();
+    const double distanceLimit = NearestRankPercentile(std::move(figures), 99.9);
+    figures.clear(); // moved from: emptied before its reuse
+    figures.reserve(points.size());
     for (int i = 0; i < n; ++i)
         if (distances.Counts(i)) figures.push_back(normalError[size_t(i)]);
     const double normalLimit = NearestRankPercentile(std::move(figures), 99.9);
@@ -566,7 +574,8 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         for (size_t t = 0; t < measure.points.size(); ++t) {
             const int i = measure.points[t];
             if (!distances.Counts(i)) { // it may not rise above the largest distance (Measure::risenMax)
-                if (measure.distance[t] > distances.Max() && measure.distance[t] > distances.Distance(i)) rose.push_back(t);
+                const double after = measure.distance[t];
+                if (after > distances.Max() && after > distances.Distance(i) + distances.Tolerance()) rose.push_back(t);
                 continue;
             }
             const double before = distances.Distance(i), after = measure.distance[t];
@@ -769,7 +778,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         if (progress && !progress(round)) result.cancelled = true;
         return !result.cancelled;
     };
-    BlendedDistances distances(points, normals, diagonal, param.counted);
+    BlendedDistances distances(points, normals, diagonal, &param.counted);
     if (!goOn()) return result; // cancelled: the caller discards the run
     // The clusters of a kept exchange are not merged again (that would undo it); neither, among
     // the merges tried with one split, are the clusters of a merge that failed (otherwise the next
