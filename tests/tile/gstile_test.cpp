@@ -739,7 +739,7 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     // recorded exchanges, and its runs from then on make at most its part.
     Shares sharedRounds;
     ASSERT_TRUE(ReadShares(dir, sharedRounds, error)) << error;
-    EXPECT_TRUE(sharedRounds.roundsShared);
+    EXPECT_TRUE(sharedRounds.RoundsShared());
     int roundsInAll = 0;
     for (const TileShare &share : sharedRounds.tiles) {
         EXPECT_GE(share.rounds, 0) << "tile " << share.id;

@@ -276,9 +276,7 @@ bool WriteShareList(const std::string &dir, const Shares &shares, std::string &e
         list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"rounds", s.rounds}, {"tried", tried}});
     }
     return WriteJsonFile(SharesPath(dir),
-                         {{"target", shares.target}, {"level", shares.level}, {"rounds_shared", shares.roundsShared},
-                          {"tiles", list}},
-                         error);
+                         {{"target", shares.target}, {"level", shares.level}, {"tiles", list}}, error);
 }
 
 /// The trial that kept the count nearest to the share (the latest of equals).
@@ -303,7 +301,6 @@ bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
         shares = Shares();
         shares.target = j.at("target").get<std::uint64_t>();
         shares.level = j.at("level").get<int>();
-        shares.roundsShared = j.at("rounds_shared").get<bool>();
         for (const json &t : j.at("tiles")) {
             TileShare share;
             share.id = t.at("id").get<int>();
@@ -464,7 +461,7 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         if (!ReadOutcome(dir, shares[s].id, outcomes[s], error)) return false;
     }
     std::vector<bool> rerun(shares.size(), false);
-    if (!all.roundsShared) {
+    if (!all.RoundsShared()) {
         vcg::gaussphere::ResamplingParams param;
         if (!TileParams(manifest, 0, param, error)) return false;
         std::vector<std::vector<double>> maxima;
@@ -474,7 +471,6 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
             shares[s].rounds = rounds[s];
             rerun[s] = !RanAtRounds(outcomes[s], shares[s]);
         }
-        all.roundsShared = true;
     }
     // What the merge keeps of a tile: its result and its rescued spare surfels (border_points.h).
     Rescues rescues;

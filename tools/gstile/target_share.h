@@ -31,6 +31,7 @@
 #ifndef GSTILE_TARGET_SHARE_H
 #define GSTILE_TARGET_SHARE_H
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -124,8 +125,13 @@ struct Shares
 {
     std::uint64_t target = 0;
     int level = 0;
-    bool roundsShared = false; ///< the tiles' rounds of exchanges are shared (ShareExchangeRounds)
     std::vector<TileShare> tiles;
+    /// Whether the tiles' rounds of exchanges are shared (ShareExchangeRounds gives every tile
+    /// its rounds at once).
+    bool RoundsShared() const
+    {
+        return std::any_of(tiles.begin(), tiles.end(), [](const TileShare &t) { return t.rounds >= 0; });
+    }
 };
 
 /// The decision the probes so far allow: the next probe, or the shares.
@@ -153,7 +159,7 @@ ShareDecision DecideShares(const Manifest &manifest, int startLevel, double merg
 /// What `gstile run` kept of a tile with a target, beside its result.
 struct TileOutcome
 {
-    std::uint64_t target = 0, owned = 0; ///< the run's count and the surfels it kept
+    std::uint64_t target = 0, owned = 0; ///< the run's count and the surfels it kept (a TileTrial)
     int rounds = -1;                     ///< its rounds of exchanges (TileShare::rounds)
     /// The largest distance of its core points to the blended surface before the exchanges and
     /// after each it kept (vcg::gaussphere::ResamplingResult::exchangeMaxima), never rising.
