@@ -757,7 +757,8 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     for (const TileShare &share : sharedRounds.tiles) {
         TileOutcome outcome;
         ASSERT_TRUE(ReadOutcome(dir, share.id, outcome, error)) << error;
-        EXPECT_EQ(outcome.rounds, share.rounds) << "tile " << share.id;
+        // At its part's rounds, or at all of them where it kept no more exchanges than its part.
+        EXPECT_TRUE(RanAtRounds(outcome, share)) << "tile " << share.id << ": rounds " << outcome.rounds;
         EXPECT_LE(outcome.maxima.size(), std::size_t(share.rounds) + 1) << "tile " << share.id;
     }
     MergeFigures merged;
