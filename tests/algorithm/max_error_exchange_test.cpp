@@ -212,6 +212,21 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
         ASSERT_LE(after.distance[size_t(i)], std::max<double>(before.distance[size_t(i)], uncountedLimit) + 1e-6 * diagonal)
             << "point " << i;
 
+    // The merge halves take no cluster with a point that does not count: each final cluster with
+    // such a point lies within one cluster of the run without exchanges (a merge would join two).
+    ResamplingParams noExchanges = counted;
+    noExchanges.exchangeRounds = 0;
+    const ResamplingResult beforeExchanges = gstest::Resample(cube, noExchanges);
+    std::vector<int> within(r.surfels.size(), -1);
+    std::vector<char> uncountedMember(r.surfels.size(), 0);
+    for (int i = first; i < cube.Size(); ++i) uncountedMember[size_t(r.representative[size_t(i)])] = 1;
+    for (int i = 0; i < cube.Size(); ++i) {
+        const int c = r.representative[size_t(i)], b = beforeExchanges.representative[size_t(i)];
+        if (!uncountedMember[size_t(c)]) continue;
+        if (within[size_t(c)] < 0) within[size_t(c)] = b;
+        ASSERT_EQ(within[size_t(c)], b) << "surfel " << c << " merged clusters with a point that does not count";
+    }
+
     const ResamplingResult all = gstest::Resample(cube, AtTarget(150, 16));
     EXPECT_NEAR(all.exchangeMaxima.front(), wholeMax, 1e-6 * diagonal);
     ResamplingParams everyVertex = AtTarget(150, 16);

@@ -18,7 +18,8 @@
 // a tile of a tiled run lowers its core points', as the whole run's rounds reach them
 // (tools/gstile/target_share.h); no change may raise another point above 3/4 of it at the time
 // (kUncountedRiseShare: the tile's halo points are other tiles' core points, where the surfels it
-// keeps blend too).
+// keeps blend too), and the merge half takes no cluster with such a point (its neighbour decides
+// there).
 //
 // Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
@@ -661,9 +662,19 @@ struct ExchangeState
     double invH2;                ///< 1 / weightWidth^2, for SplitMembers
 };
 
+/// Whether cluster c has a member whose distance does not count (MaxErrorExchangeParams::counted).
+inline bool HasUncountedMember(const BlendedDistances &distances, const ClusterMembers &members, int c)
+{
+    for (const int *i = members.begin(c); i != members.end(c); ++i)
+        if (!distances.Counts(*i)) return true;
+    return false;
+}
+
 /// The merges tried with the split of cluster c into firstHalf and secondHalf (ascending; the
 /// labels of `x.clusters` as before the split, `members` theirs): the cheapest pairs that touch
-/// neither c, a settled cluster nor a merge tried before, at most mergeCandidates; the second half
+/// neither c, a settled cluster, a cluster with a member that does not count (in a tile, a
+/// cluster at or beyond its faces: the neighbouring tile decides whether it is merged) nor a merge
+/// tried before, at most mergeCandidates; the second half
 /// takes the index of the cluster merged away. Keeps the first exchange that lowers the largest
 /// distance (clusters, distances, current and settled updated) and returns whether one was kept.
 template <class GoOn>
@@ -677,6 +688,13 @@ bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std
         if (merges >= x.param.mergeCandidates) break;
         const int keep = pair->a, gone = pair->b;
         if (excluded[keep] || excluded[gone]) continue;
+        const bool keepUncounted = HasUncountedMember(x.distances, members, keep);
+        const bool goneUncounted = HasUncountedMember(x.distances, members, gone);
+        if (keepUncounted || goneUncounted) {
+            excluded[keep] |= char(keepUncounted);
+            excluded[gone] |= char(goneUncounted);
+            continue;
+        }
         ++merges;
         std::vector<int> merged;
         std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
