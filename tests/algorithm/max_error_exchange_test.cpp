@@ -206,7 +206,8 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
     EXPECT_LE(*std::max_element(after.distance.begin(), after.distance.begin() + first),
               r.exchangeMaxima.back() + 1e-6 * diagonal) << "the crease fit raises no counted point above it";
     // No change raised a point that does not count above its share of the largest distance at
-    // the time, of the first one at most.
+    // the time, of the first one at most (a check of the limit: the cube's halo points need not
+    // come near it).
     const double uncountedLimit = kUncountedRiseShare * r.exchangeMaxima.front();
     for (int i = first; i < cube.Size(); ++i)
         ASSERT_LE(after.distance[size_t(i)], std::max<double>(before.distance[size_t(i)], uncountedLimit) + 1e-6 * diagonal)
@@ -219,9 +220,13 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
     const ResamplingResult beforeExchanges = gstest::Resample(cube, noExchanges);
     std::vector<int> within(r.surfels.size(), -1);
     std::vector<char> uncountedMember(r.surfels.size(), 0);
-    for (int i = first; i < cube.Size(); ++i) uncountedMember[size_t(r.representative[size_t(i)])] = 1;
+    for (int i = first; i < cube.Size(); ++i) {
+        ASSERT_GE(r.representative[size_t(i)], 0) << "the cube has no skipped point";
+        uncountedMember[size_t(r.representative[size_t(i)])] = 1;
+    }
     for (int i = 0; i < cube.Size(); ++i) {
         const int c = r.representative[size_t(i)], b = beforeExchanges.representative[size_t(i)];
+        ASSERT_GE(c, 0);
         if (!uncountedMember[size_t(c)]) continue;
         if (within[size_t(c)] < 0) within[size_t(c)] = b;
         ASSERT_EQ(within[size_t(c)], b) << "surfel " << c << " merged clusters with a point that does not count";

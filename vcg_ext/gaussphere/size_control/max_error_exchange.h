@@ -96,7 +96,7 @@ struct MaxErrorExchangeParams
 /// neighbouring tile keeps there (other merges, other crease fits), so a rise the tile sees just
 /// below the largest distance can lie above it in the merged output (the dragon at 4,000 surfels
 /// in 13 tiles: with a share of 1, one crease fit put the tiled largest distance 32 % above the
-/// whole run's; with 3/4, 0.3 %).
+/// whole run's).
 constexpr double kUncountedRiseShare = 0.75;
 
 /// Points projected at a time for the blended normal errors of the crease fit.
@@ -586,7 +586,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
             const int i = measure.points[t];
             if (!distances.Counts(i)) { // it may not rise above its share of the largest distance (Measure::risenMax)
                 const double after = measure.distance[t];
-                if (after > kUncountedRiseShare * distances.Max() && after > distances.Distance(i) + distances.Tolerance()) rose.push_back(t);
+                if (after / kUncountedRiseShare > distances.Max() && after > distances.Distance(i) + distances.Tolerance()) rose.push_back(t);
                 continue;
             }
             const double before = distances.Distance(i), after = measure.distance[t];
@@ -639,6 +639,17 @@ bool ListMergePairs(const PointArray &points, const PointArray &normals, Neighbo
     const MergeCostModel model(points, normals, clusters, members, weightWidth);
     if (!goOn()) return false;
     std::vector<MergePair> linked = LinkedPairs(model, links);
+    if (!param.counted.empty()) {
+        // No merge takes a cluster with a point that does not count: in a tile, a cluster reaching
+        // its halo, whose merge is the neighbouring tile's to make. Clusters not settled keep
+        // their members, so the pairs are dropped here once.
+        std::vector<char> uncounted(size_t(clusters.clusterCount), 0);
+        for (size_t i = 0; i < param.counted.size(); ++i)
+            if (!param.counted[i] && clusters.label[i] >= 0) uncounted[size_t(clusters.label[i])] = 1;
+        linked.erase(std::remove_if(linked.begin(), linked.end(),
+                                    [&uncounted](const MergePair &p) { return uncounted[size_t(p.a)] || uncounted[size_t(p.b)]; }),
+                     linked.end());
+    }
     const size_t readable = PairsReadAtMost(linked, clusters.clusterCount, param);
     pairs = CheapestFirst(std::move(linked), readable);
     return true;
@@ -662,19 +673,9 @@ struct ExchangeState
     double invH2;                ///< 1 / weightWidth^2, for SplitMembers
 };
 
-/// Whether cluster c has a member whose distance does not count (MaxErrorExchangeParams::counted).
-inline bool HasUncountedMember(const BlendedDistances &distances, const ClusterMembers &members, int c)
-{
-    for (const int *i = members.begin(c); i != members.end(c); ++i)
-        if (!distances.Counts(*i)) return true;
-    return false;
-}
-
 /// The merges tried with the split of cluster c into firstHalf and secondHalf (ascending; the
 /// labels of `x.clusters` as before the split, `members` theirs): the cheapest pairs that touch
-/// neither c, a settled cluster, a cluster with a member that does not count (in a tile, a
-/// cluster at or beyond its faces: the neighbouring tile decides whether it is merged) nor a merge
-/// tried before, at most mergeCandidates; the second half
+/// neither c, a settled cluster nor a merge tried before, at most mergeCandidates; the second half
 /// takes the index of the cluster merged away. Keeps the first exchange that lowers the largest
 /// distance (clusters, distances, current and settled updated) and returns whether one was kept.
 template <class GoOn>
@@ -688,13 +689,6 @@ bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std
         if (merges >= x.param.mergeCandidates) break;
         const int keep = pair->a, gone = pair->b;
         if (excluded[keep] || excluded[gone]) continue;
-        const bool keepUncounted = HasUncountedMember(x.distances, members, keep);
-        const bool goneUncounted = HasUncountedMember(x.distances, members, gone);
-        if (keepUncounted || goneUncounted) {
-            excluded[keep] |= char(keepUncounted);
-            excluded[gone] |= char(goneUncounted);
-            continue;
-        }
         ++merges;
         std::vector<int> merged;
         std::merge(members.begin(keep), members.end(keep), members.begin(gone), members.end(gone),
