@@ -2,7 +2,7 @@
 # Tiled resampling at scale (bench/tile/README.md):
 #   bench/tile/bench_tile.sh WORK_DIR compare   # whole vs tiled at 5 and 20 million points
 #   bench/tile/bench_tile.sh WORK_DIR big       # 200 million points from disk, 1 and 2 Dask workers
-#   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at four target counts, whole vs tiled
+#   bench/tile/bench_tile.sh WORK_DIR target    # the dragon at five target counts, whole vs tiled
 #   bench/tile/bench_tile.sh WORK_DIR bound     # the dragon at two error bounds, whole vs tiled
 #   bench/tile/bench_tile.sh WORK_DIR flat      # whole vs tiled on flat faces: the drilled box at 5
 #                                               # and 20 million points
@@ -66,7 +66,7 @@ whole_and_tiled() {
   rm -rf "tiles_$name"
 }
 
-target() { local count; for count in 4000 10000 40000 100000; do whole_and_tiled "target_$count" --target "$count"; done; }
+target() { local count; for count in 4000 8000 10000 40000 100000; do whole_and_tiled "target_$count" --target "$count"; done; }
 # 0.002 of the diagonal: level 8 meets it on the dragon; 0.0005: clusters split in every tile.
 bound() { local bound; for bound in 0.002 0.0005; do whole_and_tiled "bound_$bound" --max-error "$bound"; done; }
 
