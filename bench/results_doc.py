@@ -429,7 +429,7 @@ def tiling():
                                 "uncovered points along tile faces",
                                 "surfels kept for border points no tile kept nor covered"], rows)]
     for stage, runs, label, title, text in (
-            ("target", ("4000", "10000", "40000", "100000"), lambda run: f"{int(run):,}", "A target count shared over the tiles",
+            ("target", ("4000", "8000", "10000", "40000", "100000"), lambda run: f"{int(run):,}", "A target count shared over the tiles",
              "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
              "(below 0: lower tiled; the whole run's rounds of exchanges for the largest error shared over the "
              "tiles, each at its core points' worst):"),
