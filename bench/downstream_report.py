@@ -21,6 +21,7 @@ METHOD_LABEL = {
     "ours-area": "ours (confidence = ellipse area)",
     "ours-sqrt": "ours (confidence = square root of the points represented)",
     "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
+    "ours-even": "ours at the same count with clusters of at most 8 points (--max-cluster-size 8), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",
     "meshlab-poisson": "MeshLab Poisson disk",
@@ -29,7 +30,7 @@ METHOD_LABEL = {
 METHOD_ORDER = list(METHOD_LABEL)
 PEERS = ["cgal-hierarchy", "cgal-grid", "meshlab-poisson"]
 SHORT = {"ours": "ours", "ours-none": "ours unweighted", "ours-quality": "ours by points", "ours-area": "ours area", "ours-sqrt": "ours sqrt",
-         "ours-nofit": "ours no fit", "cgal-hierarchy": "hierarchy",
+         "ours-nofit": "ours no fit", "ours-even": "ours even", "cgal-hierarchy": "hierarchy",
          "cgal-grid": "grid", "meshlab-poisson": "Poisson disk", "floor": "floor"}
 STATS = [("rms", "RMS"), ("p99", "p99"), ("max", "max")]
 DIRECTIONS = [("symmetric", "both ways"), ("to_original", "reconstruction → original"),

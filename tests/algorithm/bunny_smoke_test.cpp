@@ -49,6 +49,29 @@ TEST(BunnySmoke, DefaultParametersGiveThePapersRanges)
     gstest::ExpectValidResult(r, s);
 }
 
+/// The expert parameter MaxClusterSize, set through the parameter table as gsresample sets it, caps
+/// the points a surfel represents; the default cap (32) leaves larger ones on the bunny.
+TEST(BunnySmoke, MaxClusterSizeCapsThePointsASurfelRepresents)
+{
+    OrientedPointMesh m;
+    if (!OpenBunny(m)) GTEST_SKIP() << "shared data not found in " << GAUSSPHERE_SHARED_DATA_DIR;
+    const ParameterSpec *spec = FindParameter("MaxClusterSize");
+    ASSERT_NE(spec, nullptr);
+    const auto largest = [](const ResamplingResult &r) {
+        int most = 0;
+        for (const Surfel &s : r.surfels) most = std::max(most, s.memberCount);
+        return most;
+    };
+    const ResamplingResult byDefault = ResamplePointSet(m, ResamplingParams());
+    ResamplingParams capped;
+    spec->set(capped, 8);
+    EXPECT_EQ(capped.tuning.maxClusterSize, 8);
+    const ResamplingResult even = ResamplePointSet(m, capped);
+    EXPECT_GT(largest(byDefault), 8);
+    EXPECT_LE(largest(even), 8);
+    EXPECT_GT(even.surfels.size(), byDefault.surfels.size());
+}
+
 /// The surfels of `r` that represent the first `n` points, with representative[] cut to them.
 ResamplingResult PartOf(const ResamplingResult &r, int n)
 {

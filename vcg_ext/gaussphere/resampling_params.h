@@ -23,8 +23,9 @@ enum class SizeControl
     ErrorBound   ///< as many surfels as the bound needs
 };
 
-/// Tuning of the stages where the paper is silent. Not parameters a user sets: each value is
-/// the one docs/algorithm.md justifies; tests vary them to check the stages they steer.
+/// Tuning of the stages where the paper is silent: each value is the one docs/algorithm.md
+/// justifies; tests vary them to check the stages they steer. Only maxClusterSize is a parameter
+/// (expert, for output meant for surface reconstruction).
 struct ResamplingTuning
 {
     int minSplitSize = 8;          ///< clusters smaller than this are never split: their covariance is noise
@@ -202,6 +203,12 @@ inline const std::vector<ParameterSpec> &ParameterTable()
          "Width h, in model units, of the Gaussian weights blending a cluster's normals into its surfel's normal "
          "(0 = 1 % of the bounding-box diagonal).",
          [](const P &p) { return p.weightWidth; }, [](P &p, double v) { p.weightWidth = v; }},
+        {"MaxClusterSize", "--max-cluster-size", "Largest cluster", ParameterKind::Int, 32, 0, unbounded, false,
+         false, ParameterAudience::Expert,
+         "Clusters of more points are split whatever their shape (0 = off). 8 spreads the surfels more evenly over "
+         "flat parts, which surface reconstruction (Screened Poisson) prefers; at level 8 it gives more surfels.",
+         [](const P &p) { return double(p.tuning.maxClusterSize); },
+         [](P &p, double v) { p.tuning.maxClusterSize = int(v); }},
         {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,
          false, false, ParameterAudience::Expert,
          "With a target: at most this many exchanges of clusters (split one at the worst point, merge a similar "
