@@ -1,6 +1,8 @@
 #include "resampling_options.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 #include "strict_parse.h"
@@ -42,11 +44,14 @@ bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingPa
 
 std::string OptionsUsage()
 {
+    int width = 0; // the longest option name, so that the value columns line up
+    for (const ParameterSpec &spec : ParameterTable())
+        if (spec.option != nullptr) width = std::max(width, int(std::strlen(spec.option)));
     std::string text;
     for (const ParameterSpec &spec : ParameterTable()) {
         if (spec.option == nullptr) continue;
-        char line[96];
-        std::snprintf(line, sizeof line, "  %-15s %s (%g; %s)%s\n", spec.option,
+        char line[128];
+        std::snprintf(line, sizeof line, "  %-*s %s (%g; %s)%s\n", width, spec.option,
                       spec.kind == ParameterKind::Int ? "N" : spec.kind == ParameterKind::Bool ? "0|1" : "X",
                       spec.defaultValue, spec.RangeText().c_str(),
                       spec.audience == ParameterAudience::Expert ? " [expert]" : "");
