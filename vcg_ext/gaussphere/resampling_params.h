@@ -205,8 +205,8 @@ inline const std::vector<ParameterSpec> &ParameterTable()
          [](const P &p) { return p.weightWidth; }, [](P &p, double v) { p.weightWidth = v; }},
         {"MaxClusterSize", "--max-cluster-size", "Largest cluster", ParameterKind::Int, 32, 0, unbounded, false,
          false, ParameterAudience::Expert,
-         "Clusters of more points are split whatever their shape (0 = off). 8 spreads the surfels more evenly over "
-         "flat parts, which surface reconstruction (Screened Poisson) prefers; at level 8 it gives more surfels.",
+         "Clusters of more points are split whatever their shape (0 = off). 4 spreads the surfels evenly over flat "
+         "parts, which surface reconstruction (Screened Poisson) prefers; at a level it gives more surfels.",
          [](const P &p) { return double(p.tuning.maxClusterSize); },
          [](P &p, double v) { p.tuning.maxClusterSize = int(v); }},
         {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,

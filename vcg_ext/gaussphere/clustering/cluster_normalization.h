@@ -6,7 +6,8 @@
 // points is dominated by sampling noise, and splitting them mostly makes singletons
 // that rejoining merges back, inflating the count without improving the shape.
 // Clusters larger than `maxClusterSize` are split along their major axis whatever their
-// shape, so that flat regions keep surfels of bounded size.
+// shape and size, so that flat regions keep surfels of bounded size (a cap below
+// `minSplitSize` holds too).
 // Clusters holding a crease point (crease_points.h) get tighter limits of their own,
 // `creaseClusterSize` and `creaseMinSplitSize` (used where smaller than the general ones):
 // beside a crease a wide surfel rounds the edge off, and an elongated one lying along the
@@ -77,8 +78,8 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
                 maxSize = maxSize > 0 ? std::min(maxSize, param.creaseClusterSize) : param.creaseClusterSize;
             minSplit = std::min(minSplit, param.creaseMinSplitSize);
         }
-        if (size < std::max(2, minSplit)) continue;
         const bool tooLarge = maxSize > 0 && size > maxSize;
+        if (size < std::max(2, minSplit) && !tooLarge) continue;
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (const int *i = members.begin(c); i != members.end(c); ++i)
             mean += Eigen::Vector3d(points[*i][0], points[*i][1], points[*i][2]);
