@@ -21,7 +21,7 @@ METHOD_LABEL = {
     "ours-area": "ours (confidence = ellipse area)",
     "ours-sqrt": "ours (confidence = square root of the points represented)",
     "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
-    "ours-even": "ours at the same count with clusters of at most 4 points (--max-cluster-size 4), unweighted",
+    "ours-even": "ours spread evenly for reconstruction (level 8, --spread-evenly 1: the same count), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",
     "meshlab-poisson": "MeshLab Poisson disk",

@@ -24,7 +24,7 @@
 # reconstruct, each a row ours-WEIGHT, space-separated among quality, none, area, sqrt (the square
 # root of the points represented), nofit, even; default quality; nofit is ours with --fit-offsets 0, unweighted: the surfels at their cluster centroids,
 # what a consumer that reads neither weight nor fit gets from the paper's placement; even is ours at
-# the level-8 count (--target) with --max-cluster-size 4, unweighted: surfels spread evenly), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
+# level 8 with --spread-evenly 1 (the same count, surfels spread evenly for reconstruction), unweighted), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
 # FLOOR (0: no reconstruction from the input itself), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
 # point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
 # two above; docs/results.md is then left alone).
@@ -134,8 +134,8 @@ for name in "${present[@]}"; do
         nice "$gsresample" "$input" "$work/$name/ours_nofit.ply" --level 8 --fit-offsets 0 > /dev/null
         reconstruct_and_measure "$name" ours-nofit "$work/$name/ours_nofit.ply" none "n=8" yes ;;
       even)
-        nice "$gsresample" "$input" "$work/$name/ours_even.ply" --target "$count" --max-cluster-size 4 > /dev/null
-        reconstruct_and_measure "$name" ours-even "$work/$name/ours_even.ply" none "target=$count max-cluster-size=4" yes ;;
+        nice "$gsresample" "$input" "$work/$name/ours_even.ply" --level 8 --spread-evenly 1 > /dev/null
+        reconstruct_and_measure "$name" ours-even "$work/$name/ours_even.ply" none "n=8 spread-evenly" yes ;;
       *) echo "[downstream] unknown weight $weight in OURS_WEIGHTS" >&2; exit 2 ;;
     esac
   done

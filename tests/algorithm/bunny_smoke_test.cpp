@@ -6,8 +6,12 @@
 // resampler does to a part of its input does not depend on the rest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
+#include <vector>
 
 #include "pipeline_support.h" // vcg's complex.h must precede the PLY importer
 
@@ -75,6 +79,72 @@ TEST(BunnySmoke, MaxClusterSizeCapsThePointsASurfelRepresents)
                                     [](const Surfel &s) { return s.memberCount > 4; });
     EXPECT_LE(over, std::ptrdiff_t(even.surfels.size() / 1000));
     EXPECT_GT(even.surfels.size(), byDefault.surfels.size());
+}
+
+/// Per point of `from`, the distance to the nearest surfel centre of `r` other than itself
+/// (brute force: a few hundred million pairs on the bunny).
+std::vector<double> NearestSurfelDistances(const std::vector<vcg::Point3f> &from, const ResamplingResult &r)
+{
+    std::vector<double> nearest(from.size());
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int i = 0; i < int(from.size()); ++i) {
+        float best = std::numeric_limits<float>::max();
+        for (const Surfel &s : r.surfels) {
+            const float d = (s.position - from[size_t(i)]).SquaredNorm();
+            if (d > 0 && d < best) best = d;
+        }
+        nearest[size_t(i)] = std::sqrt(double(best));
+    }
+    return nearest;
+}
+
+double CoefficientOfVariation(const std::vector<double> &v)
+{
+    double sum = 0, squares = 0;
+    for (double x : v) { sum += x; squares += x * x; }
+    const double mean = sum / double(v.size());
+    return std::sqrt(std::max(0.0, squares / double(v.size()) - mean * mean)) / mean;
+}
+
+/// SpreadEvenly, set through the parameter table: at a level, the level's count of surfels, spaced
+/// evenly (the spacing between surfels varies far less than at the defaults) and covering the
+/// input closely everywhere (no point far from every surfel, as on the defaults' large flat
+/// clusters); with a target, the target exactly; with an error bound, a clear refusal.
+TEST(BunnySmoke, SpreadEvenlySpacesTheLevelsCountEvenly)
+{
+    OrientedPointMesh m;
+    if (!OpenBunny(m)) GTEST_SKIP() << "shared data not found in " << GAUSSPHERE_SHARED_DATA_DIR;
+    const ParameterSpec *spec = FindParameter("SpreadEvenly");
+    ASSERT_NE(spec, nullptr);
+    const ResamplingResult byDefault = ResamplePointSet(m, ResamplingParams());
+    ResamplingParams param;
+    spec->set(param, 1);
+    const ResamplingResult even = ResamplePointSet(m, param);
+    EXPECT_EQ(even.surfels.size(), byDefault.surfels.size());
+    gstest::PointSet s;
+    std::vector<vcg::Point3f> points, defaultCentres, evenCentres;
+    for (const auto &v : m.vert) {
+        s.Add(v.cP(), v.cN());
+        points.push_back(v.cP());
+    }
+    gstest::ExpectValidResult(even, s);
+    for (const Surfel &x : byDefault.surfels) defaultCentres.push_back(x.position);
+    for (const Surfel &x : even.surfels) evenCentres.push_back(x.position);
+    const double defaultVariation = CoefficientOfVariation(NearestSurfelDistances(defaultCentres, byDefault));
+    const double evenVariation = CoefficientOfVariation(NearestSurfelDistances(evenCentres, even));
+    const std::vector<double> defaultCover = NearestSurfelDistances(points, byDefault);
+    const std::vector<double> evenCover = NearestSurfelDistances(points, even);
+    const double defaultFarthest = *std::max_element(defaultCover.begin(), defaultCover.end());
+    const double evenFarthest = *std::max_element(evenCover.begin(), evenCover.end());
+    std::printf("bunny spacing variation %.3f -> %.3f, farthest point from a surfel %.5f -> %.5f\n",
+                defaultVariation, evenVariation, defaultFarthest, evenFarthest);
+    EXPECT_LT(evenVariation, 0.6 * defaultVariation);
+    EXPECT_LT(evenFarthest, 0.6 * defaultFarthest);
+
+    param.targetCount = 3000;
+    EXPECT_EQ(ResamplePointSet(m, param).surfels.size(), 3000u);
+    param.maxErrorFraction = 0.01;
+    EXPECT_NE(param.Validate().find("SpreadEvenly"), std::string::npos);
 }
 
 /// The surfels of `r` that represent the first `n` points, with representative[] cut to them.

@@ -420,14 +420,16 @@ inline std::vector<Surfel> ResampleAtLevel(Run &run)
 /// Merges the most similar neighbouring clusters down to `target`; returns the merged clusters'
 /// links, which the exchanges read. From here on the surfels' fit reads the graph's first
 /// kOffsetNeighbors slots only: the rest goes before the merge's queue exists (32 B a point at k = 16).
-inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, std::vector<CountMerge> *record)
+inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, std::vector<CountMerge> *record,
+                                                          MergeSpread spread = MergeSpread::Ward)
 {
     const auto merging = [&run](double done) {
         return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
     };
     const std::unique_ptr<MergeBasis> basis = BuildMergeBasis(run.points, run.normals, run.graph, run.clusters,
                                                               run.weightWidth,
-                                                              [&merging](double done) { return merging(0.2 * done); });
+                                                              [&merging](double done) { return merging(0.2 * done); },
+                                                              spread);
     if (!basis) throw ResamplingCancelled();
     KeepFirstSlots(run.graph, kOffsetNeighbors);
     run.stats.mergesForTarget =
@@ -442,6 +444,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
                              std::vector<Surfel> &surfels, std::vector<double> &maxima)
 {
     MaxErrorExchangeParams exchangeParam;
+    exchangeParam.mergeSpread = run.param.spreadEvenly ? MergeSpread::Extent : MergeSpread::Ward;
     exchangeParam.maxRounds = run.param.exchangeRounds >= 0
                                   ? std::min(run.param.exchangeRounds, run.param.maxErrorExchanges)
                                   : run.param.maxErrorExchanges;
@@ -467,6 +470,25 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     maxima.clear();
     for (double m : exchange.maxima) maxima.push_back(m / run.scale);
     stats.secondsExchanges = run.timer.Lap();
+}
+
+/// The surfels of the clusters at their final count: through the exchanges for the largest error
+/// (`mergedLinks`: the merged clusters' links, null if none merged), else fitted to their blend.
+inline std::vector<Surfel> SurfelsAtCount(Run &run, const SurfelMaker &maker,
+                                          std::vector<std::vector<int>> *mergedLinks, ResamplingResult &result)
+{
+    run.stats.secondsRefinement = run.timer.Lap();
+    Report(run.cb, 90, "Gaussian sphere resampling: surfels");
+    std::vector<Surfel> surfels;
+    if (run.param.maxErrorExchanges > 0) {
+        ExchangeClusters(run, maker, mergedLinks, surfels, result.exchangeMaxima);
+    } else {
+        surfels = maker.MakeFitted(run.clusters, [&run]() {
+            Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
+        });
+    }
+    run.stats.surfelsNarrowedAtCreases = CountNarrowed(surfels); // of the kept set, not of the exchanges' trials
+    return surfels;
 }
 
 /// SizeControl::TargetCount: the level found by SearchLevel (or the parameter's, searchLevel
@@ -497,18 +519,29 @@ inline std::vector<Surfel> ResampleToCount(Run &run, ResamplingResult &result)
         for (size_t i = 0; i < run.points.size(); ++i) record.levelRepresentative[run.source[i]] = run.clusters.label[i];
     }
     if (merged) mergedLinks = MergeClustersToCount(run, target, recorded ? &record.merges : nullptr);
-    stats.secondsRefinement = run.timer.Lap();
-    Report(run.cb, 90, "Gaussian sphere resampling: surfels");
-    std::vector<Surfel> surfels;
-    if (run.param.maxErrorExchanges > 0) {
-        ExchangeClusters(run, maker, merged ? &mergedLinks : nullptr, surfels, result.exchangeMaxima);
-    } else {
-        surfels = maker.MakeFitted(run.clusters, [&run]() {
-            Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");
-        });
-    }
-    stats.surfelsNarrowedAtCreases = CountNarrowed(surfels); // of the kept set, not of the exchanges' trials
-    return surfels;
+    return SurfelsAtCount(run, maker, merged ? &mergedLinks : nullptr, result);
+}
+
+/// Spreading evenly (ResamplingParams::spreadEvenly): as many surfels as the size control gives
+/// (the count of the level's clusters, or the target), grown from single points by merging the
+/// cheapest neighbouring pairs by MergeSpread::Extent, then exchanged for the largest error as at a
+/// target. The level's clustering still restricts the graph to its cone and marks the creases.
+inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
+{
+    ResamplingStats &stats = run.stats;
+    Adopt(ClusterAtLevel(run, run.param.subdivisionLevel), run);
+    Clustering &clusters = run.clusters;
+    const int target = stats.targetCount = run.param.SizeMode() == SizeControl::Level
+                                               ? clusters.clusterCount
+                                               : run.param.TargetFor(int(run.points.size()));
+    clusters.clusterCount = 0;
+    for (int &label : clusters.label)
+        if (label >= 0) label = clusters.clusterCount++;
+    const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
+    std::vector<std::vector<int>> mergedLinks;
+    const bool merged = clusters.clusterCount > target;
+    if (merged) mergedLinks = MergeClustersToCount(run, target, nullptr, MergeSpread::Extent);
+    return SurfelsAtCount(run, maker, merged ? &mergedLinks : nullptr, result);
 }
 /// SizeControl::ErrorBound: the clusters of the parameter's level split until every point lies
 /// within the bound of its own surfel's plane, then of the surfels' blended surface, whose last
@@ -601,10 +634,14 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
     detail::ReadPoints(mesh, run);
     detail::FindNeighbors(run);
     detail::Report(cb, 45, "Gaussian sphere resampling: clustering");
-    switch (result.stats.sizeMode) {
-    case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
-    case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, result); break;
-    case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
+    if (param.spreadEvenly) {
+        result.surfels = detail::ResampleEvenly(run, result);
+    } else {
+        switch (result.stats.sizeMode) {
+        case SizeControl::Level: result.surfels = detail::ResampleAtLevel(run); break;
+        case SizeControl::TargetCount: result.surfels = detail::ResampleToCount(run, result); break;
+        case SizeControl::ErrorBound: result.surfels = detail::ResampleToErrorBound(run); break;
+        }
     }
     detail::Finish(run, result);
     detail::Report(cb, 100, "Gaussian sphere resampling: done");

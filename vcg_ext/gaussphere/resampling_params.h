@@ -25,7 +25,7 @@ enum class SizeControl
 
 /// Tuning of the stages where the paper is silent: each value is the one docs/algorithm.md
 /// justifies; tests vary them to check the stages they steer. Only maxClusterSize is a parameter
-/// (expert, for output meant for surface reconstruction).
+/// (expert).
 struct ResamplingTuning
 {
     int minSplitSize = 8;          ///< clusters smaller than this are never split: their covariance is noise
@@ -69,6 +69,8 @@ struct ResamplingParams
     double normalizationThreshold = 6.0; ///< clusters with lambda1/lambda2 above it are split
     double weightWidth = 0;        ///< h of the surfel normal weights, in model units (0 = 1 % of the diagonal)
     int maxErrorExchanges = 16;    ///< TargetCount: exchanges of clusters that lower the largest error (0 = off)
+    bool spreadEvenly = false;     ///< for surface reconstruction: the size control's count of surfels grown from
+                                   ///< single points by merging, spread evenly (ResampleEvenly); not with maxErrorFraction
     /// TargetCount: search the level (false: split or merge the clusters of subdivisionLevel). Not a
     /// user's parameter: the tiles of a tiled run (tools/gstile) take the level the whole input gives.
     bool searchLevel = true;
@@ -205,15 +207,21 @@ inline const std::vector<ParameterSpec> &ParameterTable()
          [](const P &p) { return p.weightWidth; }, [](P &p, double v) { p.weightWidth = v; }},
         {"MaxClusterSize", "--max-cluster-size", "Largest cluster", ParameterKind::Int, 32, 0, unbounded, false,
          false, ParameterAudience::Expert,
-         "Clusters of more points are split whatever their shape (0 = off). 4 spreads the surfels evenly over flat "
-         "parts, which surface reconstruction (Screened Poisson) prefers; at a level it gives more surfels.",
+         "Clusters of more points are split whatever their shape (0 = off); lower caps give more, smaller surfels "
+         "on flat parts.",
          [](const P &p) { return double(p.tuning.maxClusterSize); },
          [](P &p, double v) { p.tuning.maxClusterSize = int(v); }},
         {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,
          false, false, ParameterAudience::Expert,
-         "With a target: at most this many exchanges of clusters (split one at the worst point, merge a similar "
+         "With a target or SpreadEvenly: at most this many exchanges of clusters (split one at the worst point, merge a similar "
          "pair elsewhere) that lower the largest distance to the blended surface at the same count (0 = off).",
          [](const P &p) { return double(p.maxErrorExchanges); }, [](P &p, double v) { p.maxErrorExchanges = int(v); }},
+        {"SpreadEvenly", "--spread-evenly", "Spread evenly, for surface reconstruction", ParameterKind::Bool, 0, 0, 1,
+         false, false, ParameterAudience::Expert,
+         "For surface reconstruction (Screened Poisson): as many surfels as the level or the target gives, grown "
+         "from single points by merging similar neighbours into clusters of even extent, so they spread evenly over "
+         "flat parts and stay dense at creases; not with MaxError.",
+         [](const P &p) { return p.spreadEvenly ? 1.0 : 0.0; }, [](P &p, double v) { p.spreadEvenly = v != 0; }},
     };
     return table;
 }
@@ -231,6 +239,7 @@ inline std::string ResamplingParams::Validate() const
     for (const ParameterSpec &spec : ParameterTable())
         if (spec.get != nullptr && !spec.Accepts(spec.get(*this)))
             return std::string(spec.name) + " must be " + spec.RangeText();
+    if (spreadEvenly && maxErrorFraction > 0) return "SpreadEvenly takes its count from the level or a target, not from MaxError";
     if (exchangeRounds < -1) return "exchangeRounds must be -1 (all of maxErrorExchanges) or at least 0";
     if (countedVertices < 0) return "countedVertices must be at least 0";
     return tuning.Validate();

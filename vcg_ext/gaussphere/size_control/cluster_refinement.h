@@ -23,6 +23,10 @@
 //   the merged surfel's plane (through the centroid, along the mean normal) and, weighted
 //   less, their spread around the centroid (Ward: |A||B|/(|A|+|B|) |c_A - c_B|^2). Flat,
 //   coplanar neighbours merge first; a merge across a bend pays for the height it adds.
+//   MergeSpread::Extent replaces the Ward spread by the merged cluster's mean squared distance
+//   to its centroid: that term does not grow with the members' number, so clusters grow to one
+//   extent wherever the input is dense or sparse, and surfels merged from single points spread
+//   evenly over flat parts (the output meant for surface reconstruction: ResampleEvenly, resampling.h).
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_REFINEMENT_H
 
@@ -210,6 +214,13 @@ private:
 constexpr double kMergePlaneWeight = 16.0;
 constexpr double kMergeSpreadWeight = 0.1;
 
+/// The spread term of MergeToCount's cost (file header).
+enum class MergeSpread
+{
+    Ward,  ///< what the merge adds to the spread, weighted by kMergeSpreadWeight
+    Extent ///< the merged cluster's mean squared distance to its centroid, weighted 1
+};
+
 /// The upper triangle of a symmetric 3x3 matrix, row by row: (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
 /// At namespace scope, not in MergeCostModel: indexing odr-uses the arrays, and C++14 has no
 /// inline variables to define a class member in a header.
@@ -225,8 +236,8 @@ public:
     /// \pre clusters' labels in [-1, clusterCount), `members` = ClusterMembers(clusters);
     ///      weightWidth = h of the surfel normal weights.
     MergeCostModel(const PointArray &points, const PointArray &normals, const Clustering &clusters,
-                   const ClusterMembers &members, double weightWidth)
-        : sums_(clusters.clusterCount), invH2_(1.0 / (weightWidth * weightWidth))
+                   const ClusterMembers &members, double weightWidth, MergeSpread spread = MergeSpread::Ward)
+        : sums_(clusters.clusterCount), invH2_(1.0 / (weightWidth * weightWidth)), spread_(spread)
     {
         Eigen::Vector3d origin = Eigen::Vector3d::Zero();
         double clustered = 0;
@@ -258,6 +269,9 @@ public:
         // and a merged normal that fits both parts better lowers the surfels' height error. Not
         // clamped at 0: a merge that straightens two surfels is the one to make first.
         const double addedHeight = merged.PlaneError() - A.PlaneError() - B.PlaneError();
+        if (spread_ == MergeSpread::Extent)
+            return ward * (A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
+                   (merged.Scatter().trace() / merged.size + kMergePlaneWeight * addedHeight) * invH2_;
         return ward * ((A.normalSum / A.size - B.normalSum / B.size).squaredNorm() +
                        kMergeSpreadWeight * (A.positionSum / A.size - B.positionSum / B.size).squaredNorm() * invH2_) +
                kMergePlaneWeight * addedHeight * invH2_;
@@ -282,11 +296,16 @@ private:
         }
         /// Sum of the members' squared distances to the plane through the centroid along the
         /// mean normal; with normals that cancel out (no plane), the whole spread.
-        double PlaneError() const
+        /// Sum of (p - centroid)(p - centroid)^T over the members.
+        Eigen::Matrix3d Scatter() const
         {
             Eigen::Matrix3d full;
             for (int e = 0; e < 6; ++e) full(kMomentRow[e], kMomentColumn[e]) = full(kMomentColumn[e], kMomentRow[e]) = moment[e];
-            const Eigen::Matrix3d scatter = full - positionSum * positionSum.transpose() / size;
+            return full - positionSum * positionSum.transpose() / size;
+        }
+        double PlaneError() const
+        {
+            const Eigen::Matrix3d scatter = Scatter();
             const double length = normalSum.norm();
             if (!(length > 1e-6 * size)) return std::max(0.0, scatter.trace());
             const Eigen::Vector3d n = normalSum / length;
@@ -295,6 +314,7 @@ private:
     };
     std::vector<Sums> sums_;
     double invH2_;
+    MergeSpread spread_;
 };
 
 /// Per cluster, the other clusters linked to it by `graph` (every neighbour found, not only the
@@ -396,7 +416,8 @@ struct MergeBasis
 /// within the adjacency; null when it returned false.
 inline std::unique_ptr<MergeBasis> BuildMergeBasis(const PointArray &points, const PointArray &normals,
                                                    const NeighborGraph &graph, const Clustering &clusters,
-                                                   double weightWidth, const std::function<bool(double)> &progress)
+                                                   double weightWidth, const std::function<bool(double)> &progress,
+                                                   MergeSpread spread = MergeSpread::Ward)
 {
     const auto goOn = [&progress](double fraction) { return !progress || progress(fraction); };
     if (!goOn(0)) return nullptr;
@@ -407,7 +428,7 @@ inline std::unique_ptr<MergeBasis> BuildMergeBasis(const PointArray &points, con
         ClusterAdjacency(graph, clusters, members, [&goOn](double done) { return goOn(0.25 + 0.5 * done); }, &stopped);
     if (stopped || !goOn(0.75)) return nullptr;
     return std::unique_ptr<MergeBasis>(
-        new MergeBasis{std::move(adjacent), MergeCostModel(points, normals, clusters, members, weightWidth)});
+        new MergeBasis{std::move(adjacent), MergeCostModel(points, normals, clusters, members, weightWidth, spread)});
 }
 
 namespace detail {

@@ -89,6 +89,7 @@ struct MaxErrorExchangeParams
     /// ... tried at most this many times: each failed trial drops the moves of the surfels within
     /// reach of the points whose figures rose.
     int creaseFitTrials = 4;
+    MergeSpread mergeSpread = MergeSpread::Ward; ///< the merges' cost (MergeCostModel), as the clusters were merged
 };
 
 /// How far a point that does not count may rise, as a share of the largest distance. A tile
@@ -636,7 +637,7 @@ bool ListMergePairs(const PointArray &points, const PointArray &normals, Neighbo
     else if (!stopped) links = ClusterAdjacency(graph, clusters, members, [&goOn](double) { return goOn(); }, &stopped);
     if (stopped || !goOn()) return false;
     KeepFirstSlots(graph, kOffsetNeighbors);
-    const MergeCostModel model(points, normals, clusters, members, weightWidth);
+    const MergeCostModel model(points, normals, clusters, members, weightWidth, param.mergeSpread);
     if (!goOn()) return false;
     std::vector<MergePair> linked = LinkedPairs(model, links);
     if (!param.counted.empty()) {
