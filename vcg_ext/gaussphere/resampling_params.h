@@ -226,6 +226,28 @@ inline const std::vector<ParameterSpec> &ParameterTable()
     return table;
 }
 
+/// The MeshLab filters the table serves: the same resampler, two purposes.
+enum class ResamplingFilter
+{
+    FeatureSensitive, ///< the paper's output, for rendering and inspection
+    ForReconstruction ///< SpreadEvenly set: points meant for surface reconstruction
+};
+
+/// The filter's name in MeshLab's menu and in .mlx scripts.
+inline const char *FilterTitle(ResamplingFilter filter)
+{
+    return filter == ResamplingFilter::FeatureSensitive ? "Gaussian Sphere Feature-Sensitive Resampling"
+                                                        : "Gaussian Sphere Resampling for Surface Reconstruction";
+}
+
+/// Whether `filter`'s dialog shows `spec`: the parameters for everyone, but MaxError, which
+/// SpreadEvenly refuses, not in the reconstruction filter's. The others keep their defaults.
+inline bool InDialog(const ParameterSpec &spec, ResamplingFilter filter)
+{
+    return spec.audience == ParameterAudience::Everyone &&
+           !(filter == ResamplingFilter::ForReconstruction && std::string(spec.name) == "MaxError");
+}
+
 /// The table's entry named `name`, or null.
 inline const ParameterSpec *FindParameter(const std::string &name)
 {
