@@ -13,10 +13,32 @@ namespace gaussphere_filter {
 
 QString PluginName() { return "FilterGaussSphere"; }
 
-QString FilterName() { return "Gaussian Sphere Feature-Sensitive Resampling"; }
+QString FilterName(ResamplingFilter filter) { return gs::FilterTitle(filter); }
 
-QString FilterInfo()
+namespace {
+
+QString ReconstructionFilterInfo()
 {
+    return "Resampling of an oriented point set into fewer points meant for surface reconstruction "
+           "(<i>Surface Reconstruction: Screened Poisson</i>), which assumes evenly spread samples.<br>"
+           "The count is what the Gaussian sphere level gives (or the target), as in <i>Gaussian Sphere "
+           "Feature-Sensitive Resampling</i>; the clusters are grown from single points by merging the "
+           "neighbours that add the least to the normal error, the height above the merged plane and the "
+           "merged cluster's extent, so the points spread evenly over flat parts and stay dense at creases "
+           "and fine detail. Each cluster becomes one point (a surfel, with the same attributes as the "
+           "feature-sensitive filter writes).<br>"
+           "Reconstruct from the new layer unweighted (Confidence Flag off): at the same count Screened "
+           "Poisson then comes closer to the original than from CGAL's hierarchy or grid simplification "
+           "or MeshLab's Poisson disk sampling on most models (docs/results.md).<br>"
+           "The input needs per-vertex normals (Filters &gt; Normals, Curvatures and Orientation &gt; "
+           "Compute normals for point sets).";
+}
+
+} // namespace
+
+QString FilterInfo(ResamplingFilter filter)
+{
+    if (filter == ResamplingFilter::ForReconstruction) return ReconstructionFilterInfo();
     return "Feature-sensitive resampling of an oriented point set into elliptical surfels.<br>"
            "Points are clustered by where their normals fall on a subdivided Gaussian sphere: "
            "labels spread between neighbours whose normals share a Gaussian triangle, one-point "
@@ -36,10 +58,10 @@ QString FilterInfo()
            "Science China Information Sciences, 2012.";
 }
 
-void AddParameters(RichParameterList &par)
+void AddParameters(ResamplingFilter filter, RichParameterList &par)
 {
     for (const gs::ParameterSpec &spec : gs::ParameterTable()) {
-        if (spec.audience != gs::ParameterAudience::Everyone) continue;
+        if (!gs::InDialog(spec, filter)) continue;
         switch (spec.kind) {
         case gs::ParameterKind::Int: par.addParam(RichInt(spec.name, int(spec.defaultValue), spec.label, spec.help)); break;
         case gs::ParameterKind::Float:
@@ -52,12 +74,13 @@ void AddParameters(RichParameterList &par)
 
 namespace {
 
-/// The dialog's values of the table's parameters; the experts' keep their defaults.
-gs::ResamplingParams ParamsFromDialog(const RichParameterList &par)
+/// The dialog's values of the table's parameters; the others keep their defaults.
+gs::ResamplingParams ParamsFromDialog(ResamplingFilter filter, const RichParameterList &par)
 {
     gs::ResamplingParams param;
+    param.spreadEvenly = filter == ResamplingFilter::ForReconstruction;
     for (const gs::ParameterSpec &spec : gs::ParameterTable()) {
-        if (spec.audience != gs::ParameterAudience::Everyone || spec.set == nullptr) continue;
+        if (!gs::InDialog(spec, filter) || spec.set == nullptr) continue;
         switch (spec.kind) {
         case gs::ParameterKind::Int: spec.set(param, par.getInt(spec.name)); break;
         case gs::ParameterKind::Float: spec.set(param, par.getFloat(spec.name)); break;
@@ -106,7 +129,8 @@ ResampleOutcome Failure(const QString &error)
 
 } // namespace
 
-ResampleOutcome ResampleCurrentLayer(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+ResampleOutcome ResampleCurrentLayer(ResamplingFilter filter, MeshDocument &md, const RichParameterList &par,
+                                     vcg::CallBackPos *cb)
 {
     const auto start = std::chrono::steady_clock::now();
     MeshModel *input = md.mm();
@@ -117,7 +141,7 @@ ResampleOutcome ResampleCurrentLayer(MeshDocument &md, const RichParameterList &
     if (counts.usable == 0 && counts.badNormal == counts.Live())
         return Failure("The layer has no normals (all are zero or invalid). Compute them first with "
                        "Filters > Normals, Curvatures and Orientation > Compute normals for point sets.");
-    const gs::ResamplingParams param = ParamsFromDialog(par);
+    const gs::ResamplingParams param = ParamsFromDialog(filter, par);
     const std::string invalid = param.Validate();
     if (!invalid.empty()) return Failure(QString::fromStdString(invalid) + ".");
 

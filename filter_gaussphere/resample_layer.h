@@ -12,17 +12,28 @@
 #include <QString>
 
 #include <meshlab_glue/meshlab_document.h>
+#include <vcg_ext/gaussphere/resampling_params.h>
 
 #include "resampling_log.h"
 
 namespace gaussphere_filter {
 
-QString PluginName();
-QString FilterName();
-QString FilterInfo();
+using vcg::gaussphere::ResamplingFilter;
 
-/// The table's parameters for everyone, in dialog order; experts' ones keep their defaults.
-void AddParameters(RichParameterList &par);
+/// The plugin's filters by action id: 0 the feature-sensitive one, 1 the one for reconstruction.
+inline bool IsFilter(int id) { return id == 0 || id == 1; }
+inline ResamplingFilter FilterOf(int id)
+{
+    return id == 1 ? ResamplingFilter::ForReconstruction : ResamplingFilter::FeatureSensitive;
+}
+
+QString PluginName();
+QString FilterName(ResamplingFilter filter);
+QString FilterInfo(ResamplingFilter filter);
+
+/// The table's parameters `filter`'s dialog shows (InDialog), in dialog order; the others keep
+/// their defaults.
+void AddParameters(ResamplingFilter filter, RichParameterList &par);
 
 struct ResampleOutcome
 {
@@ -31,8 +42,10 @@ struct ResampleOutcome
     MeshModel *output = nullptr;
 };
 
-/// Resamples the current layer of `md` into a new current layer "<label> resampled".
-ResampleOutcome ResampleCurrentLayer(MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
+/// Resamples the current layer of `md` into a new current layer "<label> resampled" (the
+/// reconstruction filter: SpreadEvenly set).
+ResampleOutcome ResampleCurrentLayer(ResamplingFilter filter, MeshDocument &md, const RichParameterList &par,
+                                     vcg::CallBackPos *cb);
 
 } // namespace gaussphere_filter
 

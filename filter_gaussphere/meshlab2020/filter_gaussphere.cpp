@@ -6,7 +6,7 @@ namespace gf = gaussphere_filter;
 
 FilterGaussSpherePlugin::FilterGaussSpherePlugin()
 {
-    typeList << FP_GAUSSPHERE_RESAMPLING;
+    typeList << FP_GAUSSPHERE_RESAMPLING << FP_GAUSSPHERE_RECONSTRUCTION;
     for (FilterIDType t : types())
         actionList << new QAction(filterName(t), this);
 }
@@ -15,12 +15,12 @@ QString FilterGaussSpherePlugin::pluginName() const { return gf::PluginName(); }
 
 QString FilterGaussSpherePlugin::filterName(FilterIDType filter) const
 {
-    return filter == FP_GAUSSPHERE_RESAMPLING ? gf::FilterName() : QString();
+    return gf::IsFilter(filter) ? gf::FilterName(gf::FilterOf(filter)) : QString();
 }
 
 QString FilterGaussSpherePlugin::filterInfo(FilterIDType filter) const
 {
-    return filter == FP_GAUSSPHERE_RESAMPLING ? gf::FilterInfo() : QString();
+    return gf::IsFilter(filter) ? gf::FilterInfo(gf::FilterOf(filter)) : QString();
 }
 
 MeshFilterInterface::FilterClass FilterGaussSpherePlugin::getClass(QAction *)
@@ -35,16 +35,16 @@ int FilterGaussSpherePlugin::getPreConditions(QAction *) const { return MeshMode
 
 int FilterGaussSpherePlugin::postCondition(QAction *) const { return MeshModel::MM_VERTCOLOR; }
 
-void FilterGaussSpherePlugin::initParameterSet(QAction *, MeshModel &, RichParameterList &par)
+void FilterGaussSpherePlugin::initParameterSet(QAction *filter, MeshModel &, RichParameterList &par)
 {
-    gf::AddParameters(par);
+    gf::AddParameters(gf::FilterOf(ID(filter)), par);
 }
 
 bool FilterGaussSpherePlugin::applyFilter(QAction *filter, MeshDocument &md, const RichParameterList &par,
                                           vcg::CallBackPos *cb)
 {
-    if (ID(filter) != FP_GAUSSPHERE_RESAMPLING) return false;
-    const gf::ResampleOutcome outcome = gf::ResampleCurrentLayer(md, par, cb);
+    if (!gf::IsFilter(ID(filter))) return false;
+    const gf::ResampleOutcome outcome = gf::ResampleCurrentLayer(gf::FilterOf(ID(filter)), md, par, cb);
     if (!outcome.error.isEmpty()) {
         // meshlabserver does not print errorMsg(), only the log: say it in both.
         errorMessage = outcome.error;

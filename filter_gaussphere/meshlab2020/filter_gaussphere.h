@@ -1,5 +1,5 @@
 // MeshLab 2020.09 filter plugin (MeshFilterInterface): Gaussian Sphere Feature-Sensitive
-// Resampling. A thin adapter: what every host shares is in ../resample_layer.h; the algorithm
+// Resampling and Gaussian Sphere Resampling for Surface Reconstruction. A thin adapter: what every host shares is in ../resample_layer.h; the algorithm
 // is vcg_ext/gaussphere/resampling.h.
 #ifndef FILTER_GAUSSPHERE_H
 #define FILTER_GAUSSPHERE_H
@@ -13,7 +13,8 @@ class FilterGaussSpherePlugin : public QObject, public MeshFilterInterface
     Q_INTERFACES(MeshFilterInterface)
 
 public:
-    enum { FP_GAUSSPHERE_RESAMPLING };
+    // In the order of gaussphere_filter::FilterOf.
+    enum { FP_GAUSSPHERE_RESAMPLING, FP_GAUSSPHERE_RECONSTRUCTION };
 
     FilterGaussSpherePlugin();
 

@@ -8,7 +8,7 @@ namespace gf = gaussphere_filter;
 
 FilterGaussSpherePlugin::FilterGaussSpherePlugin()
 {
-    typeList = {FP_GAUSSPHERE_RESAMPLING};
+    typeList = {FP_GAUSSPHERE_RESAMPLING, FP_GAUSSPHERE_RECONSTRUCTION};
     for (ActionIDType t : types())
         actionList.push_back(new QAction(filterName(t), this));
 }
@@ -17,18 +17,20 @@ QString FilterGaussSpherePlugin::pluginName() const { return gf::PluginName(); }
 
 QString FilterGaussSpherePlugin::filterName(ActionIDType filter) const
 {
-    return filter == FP_GAUSSPHERE_RESAMPLING ? gf::FilterName() : QString();
+    return gf::IsFilter(filter) ? gf::FilterName(gf::FilterOf(filter)) : QString();
 }
 
 // pymeshlab's name: the default would be the long display name turned into snake case.
 QString FilterGaussSpherePlugin::pythonFilterName(ActionIDType filter) const
 {
-    return filter == FP_GAUSSPHERE_RESAMPLING ? "generate_gaussian_sphere_resampling" : QString();
+    if (!gf::IsFilter(filter)) return QString();
+    return filter == FP_GAUSSPHERE_RESAMPLING ? "generate_gaussian_sphere_resampling"
+                                              : "generate_gaussian_sphere_resampling_for_reconstruction";
 }
 
 QString FilterGaussSpherePlugin::filterInfo(ActionIDType filter) const
 {
-    return filter == FP_GAUSSPHERE_RESAMPLING ? gf::FilterInfo() : QString();
+    return gf::IsFilter(filter) ? gf::FilterInfo(gf::FilterOf(filter)) : QString();
 }
 
 FilterPlugin::FilterClass FilterGaussSpherePlugin::getClass(const QAction *) const
@@ -46,10 +48,10 @@ int FilterGaussSpherePlugin::getPreConditions(const QAction *) const { return Me
 
 int FilterGaussSpherePlugin::postCondition(const QAction *) const { return MeshModel::MM_VERTCOLOR; }
 
-RichParameterList FilterGaussSpherePlugin::initParameterList(const QAction *, const MeshModel &)
+RichParameterList FilterGaussSpherePlugin::initParameterList(const QAction *filter, const MeshModel &)
 {
     RichParameterList par;
-    gf::AddParameters(par);
+    gf::AddParameters(gf::FilterOf(ID(filter)), par);
     return par;
 }
 
@@ -57,8 +59,8 @@ std::map<std::string, QVariant> FilterGaussSpherePlugin::applyFilter(const QActi
                                                                      MeshDocument &md, unsigned int &,
                                                                      vcg::CallBackPos *cb)
 {
-    if (ID(filter) != FP_GAUSSPHERE_RESAMPLING) wrongActionCalled(filter);
-    const gf::ResampleOutcome outcome = gf::ResampleCurrentLayer(md, par, cb);
+    if (!gf::IsFilter(ID(filter))) wrongActionCalled(filter);
+    const gf::ResampleOutcome outcome = gf::ResampleCurrentLayer(gf::FilterOf(ID(filter)), md, par, cb);
     if (!outcome.error.isEmpty()) throw MLException("Gaussian sphere resampling failed: " + outcome.error);
     for (const gf::LogLine &line : outcome.log)
         log(line.warning ? GLLogStream::WARNING : GLLogStream::FILTER, line.text);

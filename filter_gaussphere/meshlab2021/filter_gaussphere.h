@@ -1,6 +1,7 @@
 // MeshLab 2021.05+ filter plugin (FilterPlugin; built against 2022.02 and 2025.07): Gaussian
-// Sphere Feature-Sensitive Resampling. A thin adapter: what every host shares is in
-// ../resample_layer.h; the algorithm is vcg_ext/gaussphere/resampling.h.
+// Sphere Feature-Sensitive Resampling and Gaussian Sphere Resampling for Surface Reconstruction.
+// A thin adapter: what every host shares is in ../resample_layer.h; the algorithm is
+// vcg_ext/gaussphere/resampling.h.
 #ifndef FILTER_GAUSSPHERE_H
 #define FILTER_GAUSSPHERE_H
 
@@ -13,7 +14,8 @@ class FilterGaussSpherePlugin : public QObject, public FilterPlugin
     Q_INTERFACES(FilterPlugin)
 
 public:
-    enum { FP_GAUSSPHERE_RESAMPLING };
+    // In the order of gaussphere_filter::FilterOf.
+    enum { FP_GAUSSPHERE_RESAMPLING, FP_GAUSSPHERE_RECONSTRUCTION };
 
     FilterGaussSpherePlugin();
 

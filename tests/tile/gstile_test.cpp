@@ -18,6 +18,7 @@
 #include <tools/gstile/merge.h>
 #include <tools/gstile/split.h>
 #include <tools/gstile/target_share.h>
+#include <tools/gstile/tile_params.h>
 #include <tools/gstile/tile_run.h>
 
 using namespace gstile;
@@ -72,6 +73,22 @@ TEST(Ownership, TheTileOfTheSmallestInputIndexKeepsTheCluster)
     // 3: {9} halo.
     const std::vector<bool> owned = OwnedSurfels(result, indices, 3);
     EXPECT_EQ(owned, (std::vector<bool>{true, false, false, false}));
+}
+
+/// SpreadEvenly grows clusters across the whole input: a split refuses it with a reason, and a
+/// manifest written without it carries no such option.
+TEST(TileOptions, SpreadEvenlyIsRefusedWithTheReason)
+{
+    gstile::Manifest manifest;
+    manifest.points = 1000;
+    manifest.diagonal = 1;
+    vcg::gaussphere::ResamplingParams param;
+    param.spreadEvenly = true;
+    std::string error;
+    EXPECT_FALSE(gstile::SetTileOptions(param, manifest, error));
+    EXPECT_NE(error.find("--spread-evenly"), std::string::npos) << error;
+    param.spreadEvenly = false;
+    EXPECT_TRUE(gstile::SetTileOptions(param, manifest, error)) << error;
 }
 
 TEST(BorderPoints, ATileRecordsTheHaloPointsItTakesAndTheCorePointsItLeaves)

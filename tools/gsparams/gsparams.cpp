@@ -15,21 +15,20 @@ using namespace vcg::gaussphere;
 namespace {
 
 /// A shipped script: its file name, what it is for, the values it sets apart from the defaults,
-/// and the filters that follow the resampling (empty: none).
+/// the filters that follow the resampling (empty: none) and which resampling filter it runs.
 struct ShippedScript
 {
     const char *file;
     const char *purpose;
     std::vector<std::pair<const char *, const char *>> values;
     const char *then = "";
+    ResamplingFilter filter = ResamplingFilter::FeatureSensitive;
 };
 
 /// MeshLab 2020.09's Screened Poisson on the resampled layer (every parameter listed, as
-/// meshlabserver needs), unweighted: Screened Poisson estimates its samples' density and splats
-/// each at a depth that follows it, and gives every sample the same pull on the surface, which
-/// keeps the many small surfels at features as binding as the large ones on flat parts. On most
-/// models that reconstructs closer than each surfel's quality (the points it represents) as
-/// confidence (docs/results.md, "Reconstruction downstream").
+/// meshlabserver needs), unweighted: the reconstruction filter's points are spread evenly, and
+/// Screened Poisson gives every sample the same pull on the surface (docs/results.md,
+/// "Reconstruction downstream").
 const char *const kScreenedPoissonUnweighted =
     " <filter name=\"Surface Reconstruction: Screened Poisson\">\n"
     "  <Param type=\"RichBool\" value=\"false\" name=\"visibleLayer\"/>\n"
@@ -55,8 +54,9 @@ const std::vector<ShippedScript> &ShippedScripts()
         {"resample_colorize.mlx", "level 8, the input coloured by cluster", {{"ColorizeClusters", "true"}}},
         {"resample_level8_nofit.mlx", "level 8, surfels at their cluster centroids (the paper)", {{"FitOffsets", "false"}}},
         {"resample_and_reconstruct.mlx",
-         "level 8, then MeshLab's Screened Poisson (depth 8) on the surfels",
-         {}, kScreenedPoissonUnweighted},
+         "level 8's count spread evenly (*Gaussian Sphere Resampling for Surface Reconstruction*), then MeshLab's "
+         "Screened Poisson (depth 8) on them",
+         {}, kScreenedPoissonUnweighted, ResamplingFilter::ForReconstruction},
     };
     return scripts;
 }
@@ -89,8 +89,9 @@ void PrintTable(ParameterAudience audience)
 void PrintReadme()
 {
     PrintTable(ParameterAudience::Everyone);
-    std::printf("\nFor experts and for reproducing the paper, `gsresample` also takes (the MeshLab filter uses "
-                "the defaults):\n\n");
+    std::printf("\n*Gaussian Sphere Resampling for Surface Reconstruction* shows the same but `MaxError` and sets "
+                "`SpreadEvenly`. For experts and for reproducing the paper, `gsresample` also takes (the MeshLab "
+                "filters use the defaults):\n\n");
     PrintTable(ParameterAudience::Expert);
     std::printf("\nShipped scripts (`sample_data/`, made by `gsparams scripts`):\n\n| script | what |\n|---|---|\n");
     for (const ShippedScript &script : ShippedScripts()) std::printf("| `%s` | %s |\n", script.file, script.purpose);
@@ -120,10 +121,10 @@ bool WriteScripts(const std::string &folder)
             return false;
         }
         // MeshLab 2020.09's meshlabserver needs every parameter of the filter listed.
-        std::fprintf(file, "<!DOCTYPE FilterScript>\n<FilterScript>\n"
-                           " <filter name=\"Gaussian Sphere Feature-Sensitive Resampling\">\n");
+        std::fprintf(file, "<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name=\"%s\">\n",
+                     FilterTitle(script.filter));
         for (const ParameterSpec &spec : ParameterTable()) {
-            if (spec.audience != ParameterAudience::Everyone) continue;
+            if (!InDialog(spec, script.filter)) continue;
             const char *type = spec.kind == ParameterKind::Int ? "RichInt"
                              : spec.kind == ParameterKind::Float ? "RichFloat" : "RichBool";
             std::fprintf(file, "  <Param type=\"%s\" value=\"%s\" name=\"%s\"/>\n", type,

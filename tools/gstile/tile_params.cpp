@@ -22,6 +22,11 @@ double ResamplerDiagonal(const std::array<float, 3> &boxMin, const std::array<fl
 
 bool SetTileOptions(const ResamplingParams &param, Manifest &manifest, std::string &error)
 {
+    if (param.spreadEvenly) {
+        // Its clusters grow across the whole input from single points: no share of them is a tile's.
+        error = "--spread-evenly does not run in tiles; resample the input whole with gsresample";
+        return false;
+    }
     ResamplingParams tile = param;
     if (tile.weightWidth == 0) tile.weightWidth = 0.01 * manifest.diagonal;
     const SizeControl mode = tile.SizeMode(); // the error bound overrides a target
