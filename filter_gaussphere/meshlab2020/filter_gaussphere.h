@@ -1,6 +1,6 @@
 // MeshLab 2020.09 filter plugin (MeshFilterInterface): Gaussian Sphere Feature-Sensitive
-// Resampling and Gaussian Sphere Resampling for Surface Reconstruction. A thin adapter: what every host shares is in ../resample_layer.h; the algorithm
-// is vcg_ext/gaussphere/resampling.h.
+// Resampling and Gaussian Sphere Resampling for Surface Reconstruction. A thin adapter: what
+// every host shares is in ../resample_layer.h; the algorithm is vcg_ext/gaussphere/resampling.h.
 #ifndef FILTER_GAUSSPHERE_H
 #define FILTER_GAUSSPHERE_H
 
