@@ -15,13 +15,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report import md_table, models_in_order, num, read_rows  # noqa: E402
 
 METHOD_LABEL = {
-    "ours": "ours, as resample_and_reconstruct.mlx reconstructs",
+    "ours": "ours, the feature-sensitive output (level 8)",
     "ours-none": "ours, unweighted",
     "ours-quality": "ours (confidence = points represented)",
     "ours-area": "ours (confidence = ellipse area)",
     "ours-sqrt": "ours (confidence = square root of the points represented)",
     "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
-    "ours-even": "ours spread evenly for reconstruction (level 8, --spread-evenly 1: the same count), unweighted",
+    "ours-even": "ours for reconstruction (level 8, --spread-evenly 1: the same count; what resample_and_reconstruct.mlx reconstructs), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",
     "meshlab-poisson": "MeshLab Poisson disk",
@@ -196,9 +196,8 @@ def intro(rows):
     weighting = WEIGHTING.get(ours["weight"], ours["weight"]) if ours else "as shipped"
     return ("Each model is resampled by ours (`gsresample`, level 8) and by every peer matched to our count "
             "(±2 %); MeshLab's *Screened Poisson* (2020.09, meshlabserver) reconstructs a surface from each "
-            f"point set ({depth_note(rows)}; the other parameters at MeshLab's defaults), ours {weighting} as "
-            "`sample_data/resample_and_reconstruct.mlx` does, the peers' points and the floor (the whole input) "
-            "unweighted. Each reconstruction is measured against the original mesh with uniform area samples "
+            f"point set ({depth_note(rows)}; the other parameters at MeshLab's defaults), ours {weighting}, "
+            "the peers' points and the floor (the whole input) unweighted. Each reconstruction is measured against the original mesh with uniform area samples "
             "of each surface and the exact distance to the nearest triangle of the other (`gsmeshdist`): "
             "RMS, 99th percentile and maximum, in 10⁻³ of the original's bounding-box diagonal; *both ways* "
             "pools the two directions' samples (RMS over both, p99 of both, max = the Hausdorff distance).")
