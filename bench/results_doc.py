@@ -231,6 +231,7 @@ def downstream():
              bench_stamp(header, "scripts/bench_downstream.sh", ["bench/results/downstream.csv"]),
              downstream_report.intro(rows) + " Definitions: [bench/README.md](../bench/README.md); every "
              f"model, each way: [downstream.md]({rel(os.path.join(RESULTS_DIR, 'downstream.md'))}).",
+             downstream_report.lead(rows),
              "On how many models ours' RMS and p99 are lower than the peer's and its max at most 10 % above:",
              downstream_report.wins_table(rows)]
     for variant in variants:
