@@ -249,6 +249,8 @@ struct Run
         generation.coverageMargin = param.tuning.coverageMargin;
         return generation;
     }
+    /// The spread term of every merge of the run, to the count and in the exchanges alike.
+    MergeSpread MergeSpreadTerm() const { return param.spreadEvenly ? MergeSpread::Extent : MergeSpread::Ward; }
     SurfelRecipe Recipe() const
     {
         SurfelRecipe recipe;
@@ -420,8 +422,7 @@ inline std::vector<Surfel> ResampleAtLevel(Run &run)
 /// Merges the most similar neighbouring clusters down to `target`; returns the merged clusters'
 /// links, which the exchanges read. From here on the surfels' fit reads the graph's first
 /// kOffsetNeighbors slots only: the rest goes before the merge's queue exists (32 B a point at k = 16).
-inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, std::vector<CountMerge> *record,
-                                                          MergeSpread spread = MergeSpread::Ward)
+inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, std::vector<CountMerge> *record)
 {
     const auto merging = [&run](double done) {
         return run.Progress(80 + int(9 * done), "Gaussian sphere resampling: merging clusters");
@@ -429,7 +430,7 @@ inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, 
     const std::unique_ptr<MergeBasis> basis = BuildMergeBasis(run.points, run.normals, run.graph, run.clusters,
                                                               run.weightWidth,
                                                               [&merging](double done) { return merging(0.2 * done); },
-                                                              spread);
+                                                              run.MergeSpreadTerm());
     if (!basis) throw ResamplingCancelled();
     KeepFirstSlots(run.graph, kOffsetNeighbors);
     run.stats.mergesForTarget =
@@ -444,7 +445,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
                              std::vector<Surfel> &surfels, std::vector<double> &maxima)
 {
     MaxErrorExchangeParams exchangeParam;
-    exchangeParam.mergeSpread = run.param.spreadEvenly ? MergeSpread::Extent : MergeSpread::Ward;
+    exchangeParam.mergeSpread = run.MergeSpreadTerm();
     exchangeParam.maxRounds = run.param.exchangeRounds >= 0
                                   ? std::min(run.param.exchangeRounds, run.param.maxErrorExchanges)
                                   : run.param.maxErrorExchanges;
@@ -540,7 +541,7 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
     const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
     std::vector<std::vector<int>> mergedLinks;
     const bool merged = clusters.clusterCount > target;
-    if (merged) mergedLinks = MergeClustersToCount(run, target, nullptr, MergeSpread::Extent);
+    if (merged) mergedLinks = MergeClustersToCount(run, target, nullptr);
     return SurfelsAtCount(run, maker, merged ? &mergedLinks : nullptr, result);
 }
 /// SizeControl::ErrorBound: the clusters of the parameter's level split until every point lies

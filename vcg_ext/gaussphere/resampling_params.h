@@ -213,8 +213,9 @@ inline const std::vector<ParameterSpec> &ParameterTable()
          [](P &p, double v) { p.tuning.maxClusterSize = int(v); }},
         {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,
          false, false, ParameterAudience::Expert,
-         "With a target or SpreadEvenly: at most this many exchanges of clusters (split one at the worst point, merge a similar "
-         "pair elsewhere) that lower the largest distance to the blended surface at the same count (0 = off).",
+         "With a target or SpreadEvenly: at most this many exchanges of clusters (split one at the worst point, "
+         "merge a similar pair elsewhere) that lower the largest distance to the blended surface at the same count "
+         "(0 = off).",
          [](const P &p) { return double(p.maxErrorExchanges); }, [](P &p, double v) { p.maxErrorExchanges = int(v); }},
         {"SpreadEvenly", "--spread-evenly", "Spread evenly, for surface reconstruction", ParameterKind::Bool, 0, 0, 1,
          false, false, ParameterAudience::Expert,
