@@ -34,7 +34,7 @@ struct Scene
         recipe.generation.weightWidth = 0.01 * 2 * std::sqrt(3.0);
         recipe.creaseBlendScale = 0.65f;
         recipe.fitOffsets = true;
-        recipe.creasePoints = &graph.crease;
+        recipe.pinnedPoints = &graph.crease;
     }
 };
 
@@ -139,7 +139,7 @@ TEST(SurfelRecipe, MakeAndUpdateNeedOnlyTheFitsSlots)
     const SurfelMaker whole(scene.s.points, scene.s.normals, scene.graph, scene.recipe);
     NeighborGraph cut = scene.graph;
     SurfelRecipe recipe = scene.recipe;
-    recipe.creasePoints = &cut.crease;
+    recipe.pinnedPoints = &cut.crease;
     const SurfelMaker maker(scene.s.points, scene.s.normals, cut, recipe);
     KeepFirstSlots(cut, kOffsetNeighbors);
     ASSERT_EQ(cut.stride, kOffsetNeighbors);

@@ -43,6 +43,7 @@
 #include <vcg/complex/complex.h>
 
 #include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
+#include <vcg_ext/gaussphere/neighbors/boundary_points.h>
 #include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
 #include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
 #include <vcg_ext/gaussphere/size_control/level_search.h>
@@ -94,6 +95,7 @@ struct ResamplingStats
     double diagonal = 0;           ///< bounding-box diagonal of the usable points, in the model's units
     int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
+    int boundaryPoints = 0;        ///< points on or beside the rim of an open surface (spreadEvenly; BoundaryBand)
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     int exchangesForMaxError = 0;  ///< cluster exchanges kept at targetCount (maxErrorExchanges)
     int exchangeTrials = 0;        ///< ... surfel sets measured for them
@@ -257,7 +259,7 @@ struct Run
         recipe.generation = Generation();
         recipe.creaseBlendScale = param.tuning.creaseBlendScale;
         recipe.fitOffsets = param.fitOffsets;
-        recipe.creasePoints = normalization.creasePoints;
+        recipe.pinnedPoints = normalization.creasePoints;
         return recipe;
     }
 };
@@ -526,7 +528,8 @@ inline std::vector<Surfel> ResampleToCount(Run &run, ResamplingResult &result)
 /// Spreading evenly (ResamplingParams::spreadEvenly): as many surfels as the size control gives
 /// (the count of the level's clusters, or the target), grown from single points by merging the
 /// cheapest neighbouring pairs by MergeSpread::Extent, then exchanged for the largest error as at a
-/// target. The level's clustering still restricts the graph to its cone and marks the creases.
+/// target. The level's clustering still restricts the graph to its cone and marks the creases;
+/// clusters at creases or on a boundary are not fitted.
 inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
 {
     ResamplingStats &stats = run.stats;
@@ -538,7 +541,19 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
     clusters.clusterCount = 0;
     for (int &label : clusters.label)
         if (label >= 0) label = clusters.clusterCount++;
-    const SurfelMaker maker(run.points, run.normals, run.graph, run.Recipe());
+    // Clusters on the rim of an open surface stay unfitted, as those at creases do
+    // (boundary_points.h); read from every slot of the graph, before the merge cuts it.
+    const FlatVector<char> boundary = BoundaryBand(run.points, run.normals, run.graph);
+    stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
+    FlatVector<char> pinned = boundary;
+    if (run.normalization.creasePoints) {
+        const FlatVector<char> &crease = *run.normalization.creasePoints;
+        for (size_t i = 0; i < pinned.size(); ++i) pinned[i] = char(pinned[i] | crease[i]);
+    }
+    SurfelRecipe recipe = run.Recipe();
+    recipe.pinnedPoints = &pinned;
+    recipe.boundaryPoints = &boundary;
+    const SurfelMaker maker(run.points, run.normals, run.graph, recipe);
     std::vector<std::vector<int>> mergedLinks;
     const bool merged = clusters.clusterCount > target;
     if (merged) mergedLinks = MergeClustersToCount(run, target, nullptr);

@@ -29,7 +29,10 @@ struct SurfelRecipe
     SurfelGenerationParams generation;          ///< blendScale must stay null
     float creaseBlendScale = 1.f;               ///< NarrowBlendsAroundCreases' scale (1: off)
     bool fitOffsets = false;                    ///< FitSurfelOffsets (without a plane bound)
-    const FlatVector<char> *creasePoints = nullptr; ///< clusters holding one are not fitted
+    const FlatVector<char> *pinnedPoints = nullptr; ///< clusters holding one are not fitted (crease points;
+                                                    ///< with SpreadEvenly boundary points too)
+    const FlatVector<char> *boundaryPoints = nullptr; ///< of those, clusters holding one stay unfitted at the
+                                                      ///< exchanges' last step too (CreaseMoves)
 };
 
 /// The surfels of `clusters` (members = ClusterMembers(clusters)) by `recipe` before the fit:
@@ -54,7 +57,7 @@ inline std::vector<Surfel> MakeSurfels(const PointArray &points, const PointArra
     std::vector<Surfel> surfels = UnfittedSurfels(points, normals, graph, clusters, members, recipe);
     if (recipe.fitOffsets) {
         if (beforeFit) beforeFit();
-        FitSurfelOffsets(points, normals, graph, clusters, members, recipe.creasePoints, surfels);
+        FitSurfelOffsets(points, normals, graph, clusters, members, recipe.pinnedPoints, surfels);
     }
     return surfels;
 }
@@ -87,7 +90,7 @@ public:
         std::vector<Surfel> surfels = Unfitted(clusters, members);
         if (recipe_.fitOffsets) {
             if (beforeFit) beforeFit();
-            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.creasePoints, surfels);
+            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.pinnedPoints, surfels);
         }
         return surfels;
     }
@@ -103,7 +106,7 @@ public:
         const bool fit = !beforeFit || beforeFit();
         s.fitted = s.unfitted;
         if (fit && recipe_.fitOffsets)
-            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.creasePoints, s.fitted);
+            FitSurfelOffsets(points_, normals_, graph_, clusters, members, recipe_.pinnedPoints, s.fitted);
         return s;
     }
 
@@ -170,7 +173,7 @@ public:
             const int j = dirtyIndex[size_t(c)];
             const int *begin = j >= 0 ? dirtyMembers[size_t(j)].data() : baseMembers.begin(c);
             const int *end = j >= 0 ? begin + dirtyMembers[size_t(j)].size() : baseMembers.end(c);
-            offset[size_t(t)] = SurfelOffsetOf(points_, normals_, graph_, trial.label, recipe_.creasePoints, s.unfitted,
+            offset[size_t(t)] = SurfelOffsetOf(points_, normals_, graph_, trial.label, recipe_.pinnedPoints, s.unfitted,
                                                weightOf, c, begin, end, 0.0);
         }
         for (size_t t = 0; t < refit.size(); ++t) {
@@ -196,9 +199,10 @@ public:
 #pragma omp parallel for schedule(dynamic, 64)
         for (int c = 0; c < count; ++c) {
             if (members.Size(c) < std::max(1, minMembers) ||
-                !StaysAtCrease(recipe_.creasePoints, set.unfitted, c, members.begin(c), members.end(c)))
+                !StaysAtCrease(recipe_.pinnedPoints, set.unfitted, c, members.begin(c), members.end(c)) ||
+                (recipe_.boundaryPoints && members.AnyFlagged(c, *recipe_.boundaryPoints)))
                 continue;
-            offset[size_t(c)] = SurfelOffsetOf(points_, normals_, graph_, clusters.label, recipe_.creasePoints,
+            offset[size_t(c)] = SurfelOffsetOf(points_, normals_, graph_, clusters.label, recipe_.pinnedPoints,
                                                set.unfitted, weightOf, c, members.begin(c), members.end(c), 0.0, true);
         }
         for (int c = 0; c < count; ++c)
