@@ -541,8 +541,8 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
     clusters.clusterCount = 0;
     for (int &label : clusters.label)
         if (label >= 0) label = clusters.clusterCount++;
-    // Clusters on the rim of an open surface stay unfitted, as those at creases do
-    // (boundary_points.h); read from every slot of the graph, before the merge cuts it.
+    // Clusters in the band along the rim of an open surface stay unfitted, as those at creases
+    // do (boundary_points.h); read from every slot of the graph, before the merge cuts it.
     const FlatVector<char> boundary = BoundaryBand(run.points, run.normals, run.graph);
     stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
     FlatVector<char> pinned = boundary;
