@@ -48,8 +48,8 @@ inline std::vector<LogLine> RunLog(const vcg::gaussphere::ResamplingStats &s)
         log.push_back({false, Format("Gaussian sphere resampling: %d surfel(s) around creases blend narrower",
                                      s.surfelsNarrowedAtCreases)});
     if (s.boundaryPoints > 0)
-        log.push_back({false, Format("Gaussian sphere resampling: %d point(s) on the rim of an open surface; their "
-                                     "surfels are not fitted",
+        log.push_back({false, Format("Gaussian sphere resampling: %d point(s) on or beside the rim of an open surface: "
+                                     "their surfels are not fitted",
                                      s.boundaryPoints)});
     if (s.surfelsFitted > 0)
         log.push_back({false, Format("Gaussian sphere resampling: %d surfel(s) fitted to the blended surface (longest "
