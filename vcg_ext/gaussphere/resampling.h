@@ -543,7 +543,8 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
         if (label >= 0) label = clusters.clusterCount++;
     // Clusters in the band along the rim of an open surface stay unfitted, as those at creases
     // do (boundary_points.h); read from every slot of the graph, before the merge cuts it.
-    const FlatVector<char> boundary = BoundaryBand(run.points, run.normals, run.graph);
+    const FlatVector<char> boundary =
+        run.param.fitOffsets ? BoundaryBand(run.points, run.normals, run.graph) : FlatVector<char>(run.points.size(), 0);
     stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
     FlatVector<char> pinned = boundary;
     if (run.normalization.creasePoints) {
