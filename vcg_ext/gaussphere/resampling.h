@@ -543,17 +543,17 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
         if (label >= 0) label = clusters.clusterCount++;
     // Clusters in the band along the rim of an open surface stay unfitted, as those at creases
     // do (boundary_points.h); read from every slot of the graph, before the merge cuts it.
-    const FlatVector<char> boundary =
-        run.param.fitOffsets ? BoundaryBand(run.points, run.normals, run.graph) : FlatVector<char>(run.points.size(), 0);
-    stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
-    FlatVector<char> pinned = boundary;
-    if (run.normalization.creasePoints) {
-        const FlatVector<char> &crease = *run.normalization.creasePoints;
-        for (size_t i = 0; i < pinned.size(); ++i) pinned[i] = char(pinned[i] | crease[i]);
-    }
     SurfelRecipe recipe = run.Recipe();
-    recipe.pinnedPoints = &pinned;
-    recipe.boundaryPoints = &boundary;
+    FlatVector<char> boundary, pinned;
+    if (recipe.fitOffsets) {
+        boundary = BoundaryBand(run.points, run.normals, run.graph);
+        stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
+        pinned = boundary;
+        if (recipe.pinnedPoints)
+            for (size_t i = 0; i < pinned.size(); ++i) pinned[i] = char(pinned[i] | (*recipe.pinnedPoints)[i]);
+        recipe.pinnedPoints = &pinned;
+        recipe.boundaryPoints = &boundary;
+    }
     const SurfelMaker maker(run.points, run.normals, run.graph, recipe);
     std::vector<std::vector<int>> mergedLinks;
     const bool merged = clusters.clusterCount > target;
