@@ -47,6 +47,14 @@ inline std::vector<LogLine> RunLog(const vcg::gaussphere::ResamplingStats &s)
     if (s.surfelsNarrowedAtCreases > 0)
         log.push_back({false, Format("Gaussian sphere resampling: %d surfel(s) around creases blend narrower",
                                      s.surfelsNarrowedAtCreases)});
+    if (s.rimPoints > 0)
+        log.push_back({false, Format("Gaussian sphere resampling: %d point(s) on the rim of an open surface: their "
+                                     "clusters are kept small, as at creases",
+                                     s.rimPoints)});
+    if (s.straySplits > 0)
+        log.push_back({false, Format("Gaussian sphere resampling: %d cluster(s) beside creases split for a member nearer "
+                                     "to other clusters than to its own",
+                                     s.straySplits)});
     if (s.boundaryPoints > 0)
         log.push_back({false, Format("Gaussian sphere resampling: %d point(s) on or beside the rim of an open surface: "
                                      "their surfels are not fitted",

@@ -149,12 +149,14 @@ TEST(ResamplingInputs, FortyCopiesOfOnePoint)
     gstest::ExpectValidResult(r, s);
 }
 
-// Fewer points than k: every point sees all others.
+// Fewer points than k: every point sees all others. (On a single row every point is a rim point,
+// whose cluster is kept small as at creases: the crease angle is off here, and with it that limit.)
 TEST(ResamplingInputs, FewerPointsThanK)
 {
     gstest::PointSet s = gstest::PlaneGrid(5, 1, 0.1f);
     ResamplingParams p;
     p.neighborCount = 16;
+    p.creaseAngle = 0;
     const ResamplingResult r = gstest::Resample(s, p);
     gstest::ExpectValidResult(r, s);
     EXPECT_EQ(r.surfels.size(), 1u); // one plane, depth 6 reaches all 5 points

@@ -44,6 +44,7 @@
 
 #include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/neighbors/boundary_points.h>
+#include <vcg_ext/gaussphere/clustering/stray_members.h>
 #include <vcg_ext/gaussphere/clustering/cluster_normalization.h>
 #include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
 #include <vcg_ext/gaussphere/size_control/level_search.h>
@@ -96,6 +97,8 @@ struct ResamplingStats
     int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
     int boundaryPoints = 0;        ///< points on or beside the rim of an open surface (spreadEvenly; BoundaryBand)
+    int rimPoints = 0;             ///< points on the rim of an open surface, kept in small clusters (with a crease angle)
+    int straySplits = 0;           ///< clusters split for a stray member beside a crease (stray_members.h)
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     int exchangesForMaxError = 0;  ///< cluster exchanges kept at targetCount (maxErrorExchanges)
     int exchangeTrials = 0;        ///< ... surfel sets measured for them
@@ -236,6 +239,7 @@ struct Run
     IndexArray source;
     NeighborGraph graph;
     IndexArray seedOrder;   ///< of index propagation (seed_order.h)
+    FlatVector<char> limited; ///< per point: at a crease or on the rim, where clusters are kept small
     double scale = 1;       ///< unit scale = scale x the model's
     double diagonal = 0;    ///< of the points, at unit scale
     double weightWidth = 0; ///< h of the surfel normal weights, at unit scale
@@ -308,6 +312,7 @@ inline void FindNeighbors(Run &run)
     neighborParam.k = run.param.neighborCount;
     neighborParam.coneChord = GaussianSphere::PaperMaxEdgeLength(run.param.subdivisionLevel);
     neighborParam.creaseAngle = run.param.creaseAngle;
+    if (run.param.creaseAngle > 0 || run.param.spreadEvenly) neighborParam.boundaryGapDegrees = kBoundaryGapDegrees;
     run.graph = BuildAdaptiveNeighbors(run.points, run.normals, neighborParam, *grid, [&run](double done) {
         return run.Progress(2 + int(40 * done), "Gaussian sphere resampling: neighbour search");
     });
@@ -318,7 +323,12 @@ inline void FindNeighbors(Run &run)
     run.normalization.minSplitSize = tuning.minSplitSize;
     run.normalization.maxClusterSize = tuning.maxClusterSize;
     if (run.param.creaseAngle > 0) {
-        run.normalization.creasePoints = &run.graph.crease;
+        // Rim points get the crease points' cluster limits (boundary_points.h).
+        run.limited = run.graph.crease;
+        const FlatVector<char> &rim = run.graph.boundary;
+        for (size_t i = 0; i < run.limited.size(); ++i) run.limited[i] = char(run.limited[i] | rim[i]);
+        run.stats.rimPoints = int(std::count(rim.begin(), rim.end(), char(1)));
+        run.normalization.creasePoints = &run.limited;
         run.normalization.creaseClusterSize = tuning.creaseClusterSize;
         run.normalization.creaseMinSplitSize = tuning.creaseMinSplitSize;
     }
@@ -328,11 +338,12 @@ inline void FindNeighbors(Run &run)
 struct LevelClustering
 {
     Clustering clusters;
-    int level = 0, naiveCount = 0, iterations = 0;
+    int level = 0, naiveCount = 0, iterations = 0, straySplits = 0;
     double meanAdaptiveNeighbors = 0;
 };
 
-/// Steps 2 and 3 at one level: naive sampling, then normalization rounds. A report after each
+/// Steps 2 and 3 at one level: naive sampling, normalization rounds, then the split of clusters
+/// with a stray member beside a crease (stray_members.h). A report after each
 /// step: at 20 M points a round takes seconds, and a MeshLab user must see it move and can cancel.
 inline LevelClustering ClusterAtLevel(Run &run, int level)
 {
@@ -372,6 +383,8 @@ inline LevelClustering ClusterAtLevel(Run &run, int level)
     report();
     r.iterations = NormalizeClusters(run.points, run.normals, run.graph, run.normalization, inscribedRadius,
                                      run.param.tuning.maxIterations, c, report);
+    r.straySplits = SplitClustersWithStrayMembers(run.points, run.normals, run.graph, run.normalization,
+                                                  inscribedRadius, c);
     ++run.stats.levelsTried;
     run.stats.secondsNormalization += run.timer.Lap();
     return r;
@@ -384,6 +397,7 @@ inline void Adopt(LevelClustering &&chosen, Run &run)
     run.stats.levelUsed = chosen.level;
     run.stats.naiveCount = chosen.naiveCount;
     run.stats.iterations = chosen.iterations;
+    run.stats.straySplits = chosen.straySplits;
     run.stats.meanAdaptiveNeighbors = chosen.meanAdaptiveNeighbors;
 }
 
@@ -546,7 +560,7 @@ inline std::vector<Surfel> ResampleEvenly(Run &run, ResamplingResult &result)
     SurfelRecipe recipe = run.Recipe();
     FlatVector<char> boundary, pinned;
     if (recipe.fitOffsets) {
-        boundary = BoundaryBand(run.points, run.normals, run.graph);
+        boundary = BoundaryBand(run.graph, run.graph.boundary);
         stats.boundaryPoints = int(std::count(boundary.begin(), boundary.end(), char(1)));
         pinned = boundary;
         if (recipe.pinnedPoints)

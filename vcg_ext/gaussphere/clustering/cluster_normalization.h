@@ -48,13 +48,14 @@ struct ClusterNormalizationParams
 
 /// One splitting pass over the clusters flagged in `examine` (every cluster when null; a
 /// cluster's decision depends on its members alone, so one unchanged since it was last
-/// examined need not be examined again). Returns the number of clusters split; `changed`, if
+/// examined need not be examined again); those flagged in `forced` (null: none) are split
+/// whatever their shape and size. Returns the number of clusters split; `changed`, if
 /// given, becomes a flag per cluster of the new count: the clusters split and those made of
 /// their halves. Deterministic: new labels are numbered in the order of the clusters they come
 /// from.
 inline int SplitElongatedClusters(const PointArray &points, const ClusterNormalizationParams &param,
                                   Clustering &clusters, const FlatVector<char> *examine = nullptr,
-                                  FlatVector<char> *changed = nullptr)
+                                  FlatVector<char> *changed = nullptr, const FlatVector<char> *forced = nullptr)
 {
     const ClusterMembers members(clusters);
     const int count = clusters.clusterCount;
@@ -78,7 +79,7 @@ inline int SplitElongatedClusters(const PointArray &points, const ClusterNormali
                 maxSize = maxSize > 0 ? std::min(maxSize, param.creaseClusterSize) : param.creaseClusterSize;
             minSplit = std::min(minSplit, param.creaseMinSplitSize);
         }
-        const bool tooLarge = maxSize > 0 && size > maxSize;
+        const bool tooLarge = (maxSize > 0 && size > maxSize) || (forced && (*forced)[size_t(c)]);
         if (size < std::max(2, minSplit) && !tooLarge) continue;
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (const int *i = members.begin(c); i != members.end(c); ++i)

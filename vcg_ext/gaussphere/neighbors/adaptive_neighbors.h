@@ -6,7 +6,8 @@
 // to the front. Keeping the rejected ones lets RestrictToCone() re-filter the same search
 // for another Gaussian sphere level without searching again. Each point also gets its
 // local sample spacing, which the surfel stage uses to close the gaps between surfels, and,
-// on request, a mark if it lies at a crease (crease_points.h).
+// on request, a mark if it lies at a crease (crease_points.h) or on the rim of an open surface
+// (boundary_points.h).
 #ifndef VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
 #define VCG_EXT_GAUSSPHERE_ADAPTIVE_NEIGHBORS_H
 
@@ -18,6 +19,7 @@
 
 #include <vcg/space/point3.h>
 
+#include <vcg_ext/gaussphere/neighbors/boundary_points.h>
 #include <vcg_ext/gaussphere/neighbors/crease_points.h>
 #include <vcg_ext/gaussphere/support/flat_vector.h>
 #include <vcg_ext/gaussphere/neighbors/point_grid.h>
@@ -38,6 +40,9 @@ struct NeighborGraph
     /// Per point: 1 if one of its k nearest (inside the cone or not) meets it at a crease
     /// (CreaseTest), else 0; empty unless AdaptiveNeighborParams::creaseAngle > 0.
     FlatVector<char> crease;
+    /// Per point: 1 if its k nearest leave a gap wider than AdaptiveNeighborParams::
+    /// boundaryGapDegrees around it (IsBoundaryPoint), else 0; empty unless that is > 0.
+    FlatVector<char> boundary;
     double chord = -1;              ///< cone chord the slots are partitioned by (-1: none yet);
                                     ///< reset it to -1 if the normals change
 
@@ -51,6 +56,7 @@ struct AdaptiveNeighborParams
     int k = 16;               ///< neighbours examined per point (clamped to [1, 255] and N-1)
     double coneChord = 0.42;  ///< keep q when |n_p - n_q| <= coneChord, i.e. <n_p,n_q> >= 1 - chord^2/2
     double creaseAngle = 0;   ///< degrees in (0, 120): mark crease points (NeighborGraph::crease); 0: none
+    double boundaryGapDegrees = 0; ///< degrees in (0, 180): mark boundary points (NeighborGraph::boundary); 0: none
 };
 
 /// Replaces zero spacings (points with only coincident neighbours) by the median of the
@@ -171,6 +177,10 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
     const bool markCreases = param.creaseAngle > 0;
     const CreaseTest atCrease(markCreases ? param.creaseAngle : 90.0);
     if (markCreases) g.crease.resize(n);
+    const bool markBoundary = param.boundaryGapDegrees > 0;
+    if (markBoundary) g.boundary.resize(n);
+    // One scratch buffer per thread: the callback runs on the search's threads.
+    std::vector<std::vector<TangentDirection>> scratch(static_cast<size_t>(omp_get_max_threads()));
     const bool complete = grid.ForAllKNearest(g.stride, [&](int i, const int *idx, const float *d2, int found) {
         int near = 0;
         float sum = 0;
@@ -186,6 +196,9 @@ inline NeighborGraph BuildAdaptiveNeighbors(const PointArray &points,
         g.found[i] = std::uint8_t(found);
         g.count[i] = std::uint8_t(kept);
         if (markCreases) g.crease[i] = crease;
+        if (markBoundary)
+            g.boundary[i] = IsBoundaryPoint(points, normals, i, idx, found, param.boundaryGapDegrees,
+                                            scratch[size_t(omp_get_thread_num())]);
     }, progress);
     if (!complete) return NeighborGraph();
     if (std::find(g.spacing.begin(), g.spacing.end(), 0.f) != g.spacing.end()) FillUnknownSpacing(g.spacing);
