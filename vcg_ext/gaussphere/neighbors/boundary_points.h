@@ -4,8 +4,8 @@
 // - A wide cluster at a rim reaches past it: its surfel sits inside the rim, and the surface the
 //   surfels blend into (an MLS projection) overshoots or falls short of the last input points (the
 //   open base of the bunny holds its largest distance to the blended surface). Rim points get the
-//   cluster limits of crease points (cluster_normalization.h), which halves that largest distance
-//   on the bunny for a 0.5 % larger count.
+//   cluster limits of crease points (cluster_normalization.h), which lowers that largest distance
+//   on the bunny by about 40 % for a 0.5 % larger count.
 // - A surfel's blend fit (surfel_offset.h) compares its members with the blend of the surfels
 //   around them. At a rim there are surfels on the inner side only, so the fit moves rim surfels
 //   by a one-sided blend. A reconstruction that closes the opening (Screened Poisson caps it)
