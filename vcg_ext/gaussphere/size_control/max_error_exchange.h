@@ -36,7 +36,8 @@
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
 // whose reach holds a surfel that changed (split, merged, refitted) are projected again, tens to
-// hundreds per trial, on a surface of the surfels near them (BlendedDistances); the surfels are
+// hundreds per trial, on a surface of the surfels near them (BlendedDistances; of all surfels
+// where more points than surfels are projected again, as in the crease fit's trials); the surfels are
 // updated where the change reaches (SurfelMaker::Update), into buffers reused by every trial, and
 // the labels are changed in place and back (LabelChange). What stays linear is light: a
 // comparison of every point's reach with the changed centres, a scan of the clusters' sampled
@@ -373,12 +374,16 @@ private:
     /// tree of the measured set finds within that radius of a point, unless listed in `fresh`
     /// (ascending: the surfels that differ from that set), and every one of `fresh`. Blended with
     /// the floor on the sizes of the whole set (MakeEllipseSurfelSurface). Every surfel instead
-    /// where a radius is infinite or fewer surfels than a projection blends are found.
+    /// where there are more points than surfels, a radius is infinite or fewer surfels than a
+    /// projection blends are found.
     SurfelSurface LocalSurface(const std::vector<Surfel> &surfels, const std::vector<int> &fresh,
                                          const std::vector<int> &points, std::vector<int> &local) const
     {
         local.clear();
-        bool whole = !measured_;
+        // More points than surfels (the crease fit's trials, which move most surfels at once):
+        // looking up each point's surfels costs more than the surface of them all, which gives the
+        // same projections.
+        bool whole = !measured_ || points.size() > surfels.size();
         for (int c : fresh)
             if (c < int(surfels.size())) local.push_back(c);
         std::vector<unsigned> near;
