@@ -384,8 +384,6 @@ private:
         // looking up each point's surfels costs more than the surface of them all, which gives the
         // same projections.
         bool whole = !measured_ || points.size() > surfels.size();
-        for (int c : fresh)
-            if (c < int(surfels.size())) local.push_back(c);
         std::vector<unsigned> near;
         std::vector<float> scratch;
         for (size_t p = 0; p < points.size() && !whole; ++p) {
@@ -400,7 +398,11 @@ private:
             for (unsigned c : near)
                 if (c < surfels.size() && !std::binary_search(fresh.begin(), fresh.end(), int(c))) local.push_back(int(c));
         }
-        SortUnique(local);
+        if (!whole) {
+            for (int c : fresh)
+                if (c < int(surfels.size())) local.push_back(c);
+            SortUnique(local);
+        }
         if (whole || local.size() < size_t(metric_.neighborCount)) {
             local.resize(surfels.size());
             for (int c = 0; c < int(surfels.size()); ++c) local[size_t(c)] = c;
