@@ -467,3 +467,52 @@ TEST(MaxErrorExchange, FitsCreaseSurfelsWhereTheErrorFalls)
         EXPECT_NEAR(with.stats.exchangeMaxAfter, a.normalizedDistance.max, 1e-7) << target;
     }
 }
+
+// A tile of a tiled run judges its crease fit against the whole scan's figures
+// (crease_fit_limits.h). Given a run's own figures, read back from its report, the output is the
+// same surfels; given no limit but the sum of squares, the fit keeps at least as many moves. The
+// cube is scaled by 37 so that the limits' model units and the resampler's unit scale differ.
+TEST(MaxErrorExchange, TheCreaseFitIsJudgedAgainstTheLimitsGiven)
+{
+    gstest::PointSet cube = gstest::CubeSurface(24, true);
+    for (P3 &p : cube.points) p *= 37.f;
+    const int points = int(cube.points.size());
+    ResamplingParams reporting = AtTarget(150, 16);
+    reporting.reportHighestAtCreaseFit = points; // every point: the report is the whole run's figures
+    const ResamplingResult own = gstest::Resample(cube, reporting);
+    const CreaseFitEntry &entry = own.creaseFitEntry;
+    ASSERT_EQ(entry.distances.size(), std::size_t(points));
+    ASSERT_EQ(entry.normalErrors.size(), std::size_t(points));
+    EXPECT_TRUE(std::is_sorted(entry.distances.rbegin(), entry.distances.rend())) << "highest first";
+    EXPECT_TRUE(std::is_sorted(entry.normalErrors.rbegin(), entry.normalErrors.rend()));
+    ASSERT_FALSE(own.exchangeMaxima.empty());
+    EXPECT_NEAR(entry.distances.front(), own.exchangeMaxima.back(), 1e-9 * Diagonal(cube))
+        << "the highest distance on entry is the largest after the exchanges";
+    EXPECT_GT(own.stats.creaseFitsForMaxError, 0);
+
+    // The run's own figures given back: the 99.9th percentiles at their nearest rank from the top.
+    const std::size_t fromTop = std::size_t(points) - NearestRank(std::size_t(points), 99.9);
+    ResamplingParams same = AtTarget(150, 16);
+    same.creaseFitLimits.given = true;
+    same.creaseFitLimits.distance = entry.distances[fromTop];
+    same.creaseFitLimits.normalError = entry.normalErrors[fromTop];
+    const ResamplingResult judgedAlike = gstest::Resample(cube, same);
+    const ResamplingResult unreported = gstest::Resample(cube, AtTarget(150, 16));
+    EXPECT_EQ(judgedAlike.representative, unreported.representative);
+    ASSERT_EQ(judgedAlike.surfels.size(), unreported.surfels.size());
+    for (size_t c = 0; c < unreported.surfels.size(); ++c) {
+        EXPECT_EQ(judgedAlike.surfels[c].position, unreported.surfels[c].position) << c;
+        EXPECT_EQ(judgedAlike.surfels[c].fitOffset, unreported.surfels[c].fitOffset) << c;
+    }
+    EXPECT_EQ(judgedAlike.stats.creaseFitsForMaxError, own.stats.creaseFitsForMaxError);
+    EXPECT_TRUE(unreported.creaseFitEntry.distances.empty()) << "no report unless asked for";
+
+    ResamplingParams loose = same;
+    loose.creaseFitLimits.distance = 1e30;
+    loose.creaseFitLimits.normalError = 1e30;
+    EXPECT_GE(gstest::Resample(cube, loose).stats.creaseFitsForMaxError, own.stats.creaseFitsForMaxError);
+
+    ResamplingParams negative = same;
+    negative.creaseFitLimits.distance = -1;
+    EXPECT_NE(negative.Validate().find("creaseFitLimits"), std::string::npos);
+}

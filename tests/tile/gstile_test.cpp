@@ -20,6 +20,7 @@
 #include <tools/gstile/target_share.h>
 #include <tools/gstile/tile_params.h>
 #include <tools/gstile/tile_run.h>
+#include <vcg_ext/surfel/percentile.h>
 
 using namespace gstile;
 
@@ -545,6 +546,8 @@ TEST(TargetShare, AnOutcomeIsReadBackOrRefusedWithTheFileNamed)
     outcome.owned = 80;
     outcome.rounds = 3;
     outcome.maxima = {0.5, 0.25, 0.25, 0.125};
+    outcome.entry.distances = {0.125, 0.1, 0.0999999999999999};
+    outcome.entry.normalErrors = {1.25, 0.75, 0.5};
     ASSERT_TRUE(WriteOutcome(dir, 7, outcome, error)) << error;
     TileOutcome read;
     ASSERT_TRUE(ReadOutcome(dir, 7, read, error)) << error;
@@ -552,6 +555,13 @@ TEST(TargetShare, AnOutcomeIsReadBackOrRefusedWithTheFileNamed)
     EXPECT_EQ(read.owned, 80u);
     EXPECT_EQ(read.rounds, 3);
     EXPECT_EQ(read.maxima, outcome.maxima);
+    EXPECT_EQ(read.entry.distances, outcome.entry.distances) << "every bit of the figures";
+    EXPECT_EQ(read.entry.normalErrors, outcome.entry.normalErrors);
+    EXPECT_FALSE(read.limits.given);
+    outcome.limits = {true, 0.1 / 3, 0.7};
+    ASSERT_TRUE(WriteOutcome(dir, 7, outcome, error)) << error;
+    ASSERT_TRUE(ReadOutcome(dir, 7, read, error)) << error;
+    EXPECT_TRUE(read.limits == outcome.limits) << "the limits a run took, compared exactly with the shares'";
     const auto refused = [&](const std::string &text, const char *what) {
         std::ofstream(dir + "/tile_000007.kept") << text;
         TileOutcome r;
@@ -559,10 +569,49 @@ TEST(TargetShare, AnOutcomeIsReadBackOrRefusedWithTheFileNamed)
         EXPECT_FALSE(ReadOutcome(dir, 7, r, e)) << what;
         EXPECT_NE(e.find("tile_000007.kept"), std::string::npos) << what << ": " << e;
     };
-    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [0.5, 0.6]}", "a maximum that rises");
-    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [-0.5]}", "a negative maximum");
-    refused("{\"target\": 120, \"owned\": 80, \"rounds\": -2, \"maxima\": []}", "rounds out of range");
-    refused("{\"target\": 120, \"owned\": 80, \"maxima\": []}", "no rounds");
+    const std::string reports = ", \"highest_distances\": [], \"highest_normal_errors\": []}";
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [0.5, 0.6]" + reports, "a maximum that rises");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [-0.5]" + reports, "a negative maximum");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": -2, \"maxima\": []" + reports, "rounds out of range");
+    refused("{\"target\": 120, \"owned\": 80, \"maxima\": []" + reports, "no rounds");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": []}", "no report of its highest figures");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [], \"crease_fit_limits\": {\"distance\": -1, "
+            "\"normal_error\": 1}" + reports, "a negative limit");
+}
+
+// The tiles' reports of their highest figures hold the whole scan's 99.9th percentiles: the
+// limits gathered from them equal the percentiles of all the figures, wherever the highest lie.
+TEST(TargetShare, TheCreaseFitLimitsAreTheWholeScansFromTheTilesReports)
+{
+    EXPECT_EQ(HighestToReport(437645), 438u) << "the dragon: its 99.9th percentile is the 438th highest";
+    EXPECT_EQ(HighestToReport(1000), 2u) << "the 999th of 1,000 from below";
+    EXPECT_EQ(HighestToReport(0), 0u);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> uniform(0, 1);
+    const std::uint64_t points = 30000; // a tile of 10,000 points and one of 20,000 ...
+    std::vector<double> all, allNormal;
+    std::vector<TileOutcome> outcomes(3);
+    const std::size_t report = HighestToReport(points);
+    for (std::size_t t = 0; t < 2; ++t) {
+        std::vector<double> d(10000 * (t + 1)), n(d.size());
+        // ... the first holding most of the highest distances, the second most of the highest normal errors.
+        for (double &v : d) v = uniform(random) * (t == 0 ? 2 : 1);
+        for (double &v : n) v = uniform(random) * (t == 1 ? 2 : 1);
+        all.insert(all.end(), d.begin(), d.end());
+        allNormal.insert(allNormal.end(), n.begin(), n.end());
+        std::sort(d.rbegin(), d.rend());
+        std::sort(n.rbegin(), n.rend());
+        outcomes[t].entry.distances.assign(d.begin(), d.begin() + std::ptrdiff_t(report));
+        outcomes[t].entry.normalErrors.assign(n.begin(), n.begin() + std::ptrdiff_t(report));
+    }
+    outcomes[2].maxima = {9.0}; // a tile without a report (no crease fit made) is passed over
+    outcomes[2].entry.normalErrors = {9.0};
+    const vcg::gaussphere::CreaseFitLimits limits = WholeScanCreaseFitLimits(outcomes, points);
+    ASSERT_TRUE(limits.given);
+    EXPECT_EQ(limits.distance, vcg::gaussphere::NearestRankPercentile(all, 99.9));
+    EXPECT_EQ(limits.normalError, vcg::gaussphere::NearestRankPercentile(allNormal, 99.9));
+    EXPECT_FALSE(WholeScanCreaseFitLimits({outcomes[2]}, points).given) << "no report: each tile judges by its own";
+
 }
 
 TEST(TargetShare, AMissedShareGetsACountBetweenTheCountsTried)
@@ -764,6 +813,7 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     }
     EXPECT_GT(roundsInAll, 0);
     EXPECT_LE(roundsInAll, options.param.maxErrorExchanges);
+    EXPECT_FALSE(sharedRounds.creaseFitLimits.given) << "the limits wait for every tile's run at its rounds";
     std::uint64_t rounds = 0;
     for (AdjustFigures round = first; !round.rerun.empty(); ++rounds) {
         for (const int id : round.rerun) ASSERT_TRUE(RunTile(dir, manifest, id, figures, error)) << error;
@@ -771,12 +821,16 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     }
     EXPECT_LE(rounds, kAdjustRounds + 2) << "a tile's new counts, their nearest, and a run for its rounds";
     ASSERT_TRUE(ReadShares(dir, sharedRounds, error)) << error;
+    ASSERT_TRUE(sharedRounds.creaseFitLimits.given);
+    EXPECT_GT(sharedRounds.creaseFitLimits.distance, 0);
+    EXPECT_GT(sharedRounds.creaseFitLimits.normalError, 0);
     for (const TileShare &share : sharedRounds.tiles) {
         TileOutcome outcome;
         ASSERT_TRUE(ReadOutcome(dir, share.id, outcome, error)) << error;
         // At its part's rounds, or at all of them where it kept no more exchanges than its part.
         EXPECT_TRUE(RanAtRounds(outcome, share)) << "tile " << share.id << ": rounds " << outcome.rounds;
         EXPECT_LE(outcome.maxima.size(), std::size_t(share.rounds) + 1) << "tile " << share.id;
+        EXPECT_TRUE(outcome.limits == sharedRounds.creaseFitLimits) << "tile " << share.id << ": the scan's crease fit limits";
     }
     MergeFigures merged;
     ASSERT_TRUE(Merge(dir, manifest, dir + "/merged.surfel", merged, error)) << error;

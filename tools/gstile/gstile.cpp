@@ -41,7 +41,7 @@ const char *const kUsage =
     "--percentage, probe runs the tiles --to-probe lists (again, until it lists none: the level\n"
     "search, then the priorities of the splits there), share divides the count as the whole run\n"
     "would spend it, and adjust gives the tiles that missed their share a new count, up to 3 times\n"
-    "a tile.\n"
+    "a tile, and shares the whole run's rounds of exchanges, then its crease fit limits.\n"
     "gsresample's options:\n";
 
 struct UsageError
@@ -167,6 +167,14 @@ int AdjustAndReport(const std::string &dir, const Manifest &manifest, std::vecto
     std::snprintf(line, sizeof line, "[adjust] the merge keeps %llu of %llu surfels; %zu tile(s) to run again",
                   (unsigned long long)figures.kept, (unsigned long long)manifest.targetCount, figures.rerun.size());
     PrintLine(line);
+    const vcg::gaussphere::CreaseFitLimits &limits = figures.sharedLimits;
+    if (limits.given) {
+        std::snprintf(line, sizeof line,
+                      "[adjust] the scan's crease fit limits, its 99.9th percentiles: distance %.6g, blended "
+                      "normal error %.6g",
+                      limits.distance, limits.normalError);
+        PrintLine(line);
+    }
     rerun = figures.rerun;
     return 0;
 }

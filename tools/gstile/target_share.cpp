@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 
 #include <nlohmann/json.hpp>
 
 #include <vcg_ext/gaussphere/size_control/level_search.h>
+#include <vcg_ext/surfel/percentile.h>
 
 #include "border_points.h"
 #include "tile_files.h"
@@ -267,6 +269,24 @@ bool TilesToProbe(const std::string &dir, const Manifest &manifest, std::vector<
 
 namespace {
 
+json LimitsJson(const vcg::gaussphere::CreaseFitLimits &limits)
+{
+    return {{"distance", limits.distance}, {"normal_error", limits.normalError}};
+}
+
+/// The limits of `j` (not given when absent).
+vcg::gaussphere::CreaseFitLimits LimitsOf(const json &j)
+{
+    vcg::gaussphere::CreaseFitLimits limits;
+    if (j.is_null()) return limits;
+    limits.given = true;
+    limits.distance = j.at("distance").get<double>();
+    limits.normalError = j.at("normal_error").get<double>();
+    if (!(limits.distance >= 0 && limits.normalError >= 0))
+        throw std::runtime_error("the crease fit limits are negative");
+    return limits;
+}
+
 bool WriteShareList(const std::string &dir, const Shares &shares, std::string &error)
 {
     json list = json::array();
@@ -275,8 +295,9 @@ bool WriteShareList(const std::string &dir, const Shares &shares, std::string &e
         for (const TileTrial &t : s.tried) tried.push_back({t.target, t.owned});
         list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"rounds", s.rounds}, {"tried", tried}});
     }
-    return WriteJsonFile(SharesPath(dir),
-                         {{"target", shares.target}, {"level", shares.level}, {"tiles", list}}, error);
+    json j = {{"target", shares.target}, {"level", shares.level}, {"tiles", list}};
+    if (shares.creaseFitLimits.given) j["crease_fit_limits"] = LimitsJson(shares.creaseFitLimits);
+    return WriteJsonFile(SharesPath(dir), j, error);
 }
 
 /// The trial that kept the count nearest to the share (the latest of equals).
@@ -301,6 +322,7 @@ bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
         shares = Shares();
         shares.target = j.at("target").get<std::uint64_t>();
         shares.level = j.at("level").get<int>();
+        shares.creaseFitLimits = LimitsOf(j.value("crease_fit_limits", json()));
         for (const json &t : j.at("tiles")) {
             TileShare share;
             share.id = t.at("id").get<int>();
@@ -335,11 +357,9 @@ bool WriteShares(const std::string &dir, const Manifest &manifest, ShareDecision
     return written;
 }
 
-bool ReadShare(const std::string &dir, int id, int &level, TileShare &share, std::string &error)
+bool ReadShare(const std::string &dir, int id, Shares &shares, TileShare &share, std::string &error)
 {
-    Shares shares;
     if (!ReadShares(dir, shares, error)) return false;
-    level = shares.level;
     for (const TileShare &s : shares.tiles) {
         if (s.id != id) continue;
         share = s;
@@ -351,10 +371,11 @@ bool ReadShare(const std::string &dir, int id, int &level, TileShare &share, std
 
 bool WriteOutcome(const std::string &dir, int id, const TileOutcome &outcome, std::string &error)
 {
-    return WriteJsonFile(TilePath(dir, id, ".kept"),
-                         {{"target", outcome.target}, {"owned", outcome.owned}, {"rounds", outcome.rounds},
-                          {"maxima", outcome.maxima}},
-                         error);
+    json j = {{"target", outcome.target}, {"owned", outcome.owned}, {"rounds", outcome.rounds},
+              {"maxima", outcome.maxima}, {"highest_distances", outcome.entry.distances},
+              {"highest_normal_errors", outcome.entry.normalErrors}};
+    if (outcome.limits.given) j["crease_fit_limits"] = LimitsJson(outcome.limits);
+    return WriteJsonFile(TilePath(dir, id, ".kept"), j, error);
 }
 
 bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::string &error)
@@ -368,6 +389,9 @@ bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::stri
         outcome.owned = j.at("owned").get<std::uint64_t>();
         outcome.rounds = j.at("rounds").get<int>();
         outcome.maxima = j.at("maxima").get<std::vector<double>>();
+        outcome.limits = LimitsOf(j.value("crease_fit_limits", json()));
+        outcome.entry.distances = j.at("highest_distances").get<std::vector<double>>();
+        outcome.entry.normalErrors = j.at("highest_normal_errors").get<std::vector<double>>();
         if (outcome.rounds < -1) throw std::runtime_error("its rounds of exchanges are out of range");
         for (std::size_t k = 0; k < outcome.maxima.size(); ++k)
             if (!(outcome.maxima[k] >= 0) || (k > 0 && outcome.maxima[k] > outcome.maxima[k - 1]))
@@ -429,6 +453,41 @@ bool RanAtRounds(const TileOutcome &outcome, const TileShare &share)
            (outcome.rounds == -1 && share.rounds >= 0 && outcome.maxima.size() <= std::size_t(share.rounds) + 1);
 }
 
+std::size_t HighestToReport(std::uint64_t points)
+{
+    return points == 0 ? 0 : std::size_t(points) - vcg::gaussphere::NearestRank(std::size_t(points), 99.9) + 1;
+}
+
+namespace {
+
+/// The `rank`-th highest (from 1) of `values`, or the lowest of them when there are fewer.
+/// \pre values not empty.
+double HighestAt(std::vector<double> values, std::size_t rank)
+{
+    rank = std::min(rank, values.size());
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(rank - 1), values.end(), std::greater<double>());
+    return values[rank - 1];
+}
+
+} // namespace
+
+vcg::gaussphere::CreaseFitLimits WholeScanCreaseFitLimits(const std::vector<TileOutcome> &outcomes, std::uint64_t points)
+{
+    vcg::gaussphere::CreaseFitLimits limits;
+    std::vector<double> distances, normalErrors;
+    for (const TileOutcome &o : outcomes) {
+        if (o.entry.distances.empty()) continue;
+        distances.insert(distances.end(), o.entry.distances.begin(), o.entry.distances.end());
+        normalErrors.insert(normalErrors.end(), o.entry.normalErrors.begin(), o.entry.normalErrors.end());
+    }
+    if (distances.empty() || normalErrors.empty()) return limits; // nothing reported: each tile judges by its own
+    limits.given = true;
+    const std::size_t rank = HighestToReport(points);
+    limits.distance = HighestAt(std::move(distances), rank);
+    limits.normalError = HighestAt(std::move(normalErrors), rank);
+    return limits;
+}
+
 std::vector<int> ShareExchangeRounds(const std::vector<std::vector<double>> &maxima, int rounds)
 {
     std::vector<int> taken(maxima.size(), 0);
@@ -471,6 +530,9 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
             shares[s].rounds = rounds[s];
             rerun[s] = !RanAtRounds(outcomes[s], shares[s]);
         }
+    } else if (!all.creaseFitLimits.given) {
+        // Every tile ran at its rounds (RequireRunAtShares): their figures are the whole run's.
+        figures.sharedLimits = all.creaseFitLimits = WholeScanCreaseFitLimits(outcomes, manifest.points);
     }
     // What the merge keeps of a tile: its result and its rescued spare surfels (border_points.h).
     Rescues rescues;
@@ -479,9 +541,10 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         const TileEntry *tile = manifest.Find(shares[s].id);
         outcomes[s].owned += rescues.spares[std::size_t(tile - manifest.tiles.data())].size();
         figures.kept += outcomes[s].owned;
-        // With its rounds changed, the tile's owned count is not known: it runs at the same count first.
-        if (rerun[s] || AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints))
-            figures.rerun.push_back(shares[s].id);
+        // With its rounds changed, the tile's owned count is not known: it runs at the same count
+        // first. New crease fit limits move surfels, not the clusters it owns: its count is adjusted.
+        const bool newCount = !rerun[s] && AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints);
+        if (rerun[s] || newCount || outcomes[s].limits != all.creaseFitLimits) figures.rerun.push_back(shares[s].id);
     }
     return WriteShareList(dir, all, error);
 }
@@ -498,7 +561,7 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
             const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
             TileOutcome outcome;
             done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target &&
-                   RanAtRounds(outcome, *share);
+                   RanAtRounds(outcome, *share) && outcome.limits == all.creaseFitLimits;
             if (!error.empty()) return false;
         }
         if (!done) pending.push_back(tile.id);

@@ -313,22 +313,25 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     const std::string name = "tile " + std::to_string(id);
     const TileEntry *entry = FindTile(dir, manifest, id, error);
     if (entry == nullptr) return false;
+    Shares shares;
     TileShare share;
-    int level = 0;
-    if (manifest.targetCount > 0 && !ReadShare(dir, id, level, share, error)) {
+    if (manifest.targetCount > 0 && !ReadShare(dir, id, shares, share, error)) {
         error = name + ": " + error;
         return false;
     }
     ResampledTile tile;
     // With a target, a tile whose share is 0 keeps nothing and needs no run.
     const bool run = manifest.targetCount == 0 || share.target > 0;
-    const auto adapt = [&manifest, &share, entry, level](ResamplingParams &param) {
+    const auto adapt = [&manifest, &shares, &share, entry](ResamplingParams &param) {
         if (manifest.targetCount == 0) return;
-        AtShare(level, share.target)(param);
+        AtShare(shares.level, share.target)(param);
         // The tile's part of the whole run's exchanges, for the largest distance among its core
-        // points (its halo's are the other tiles' core points).
+        // points (its halo's are the other tiles' core points), and the whole scan's crease fit
+        // limits, from the reports of every tile's highest figures.
         param.exchangeRounds = share.rounds;
         param.countedVertices = int(entry->corePoints);
+        param.creaseFitLimits = shares.creaseFitLimits;
+        param.reportHighestAtCreaseFit = int(std::min<std::size_t>(HighestToReport(manifest.points), entry->corePoints));
     };
     if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;
@@ -347,7 +350,8 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     if (!WriteBorder(dir, id, border, error) || !WriteResult(TilePath(dir, id, ".spare"), spare, error) ||
         !WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
         (manifest.targetCount > 0 &&
-         !WriteOutcome(dir, id, {share.target, kept.size(), share.rounds, tile.result.exchangeMaxima}, error))) {
+         !WriteOutcome(dir, id, {share.target, kept.size(), share.rounds, tile.result.exchangeMaxima,
+                                 shares.creaseFitLimits, tile.result.creaseFitEntry}, error))) {
         error = name + ": " + error;
         return false;
     }

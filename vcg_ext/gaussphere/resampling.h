@@ -148,6 +148,9 @@ struct ResamplingResult
     /// TargetCount with exchanges: the largest distance to the blended surface before them and after
     /// each kept one, in the model's units, over the points that count (countedVertices).
     std::vector<double> exchangeMaxima;
+    /// TargetCount with exchanges and ResamplingParams::reportHighestAtCreaseFit: the highest figures
+    /// of the points that count on entry to the crease fit, the distances in the model's units.
+    CreaseFitEntry creaseFitEntry;
     ResamplingStats stats;
 };
 
@@ -456,9 +459,10 @@ inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, 
 }
 
 /// The exchanges of clusters for the largest error (max_error_exchange.h); `surfels` receives
-/// the kept set, `maxima` the largest distance before them and after each kept one.
+/// the kept set, `result` the largest distance before them and after each kept one, and the
+/// crease fit's report.
 inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std::vector<int>> *mergedLinks,
-                             std::vector<Surfel> &surfels, std::vector<double> &maxima)
+                             std::vector<Surfel> &surfels, ResamplingResult &result)
 {
     MaxErrorExchangeParams exchangeParam;
     exchangeParam.mergeSpread = run.MergeSpreadTerm();
@@ -470,6 +474,9 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
         for (size_t i = 0; i < run.points.size(); ++i)
             exchangeParam.counted[i] = run.source[i] < run.param.countedVertices;
     }
+    exchangeParam.creaseFitLimits = run.param.creaseFitLimits;
+    exchangeParam.creaseFitLimits.distance *= run.scale;
+    exchangeParam.reportHighest = run.param.reportHighestAtCreaseFit;
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
         [&run](int round) {
@@ -484,8 +491,10 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     stats.creaseFitsForMaxError = exchange.creaseFits;
     stats.exchangeMaxBefore = run.diagonal > 0 ? exchange.maxBefore / run.diagonal : 0.0;
     stats.exchangeMaxAfter = run.diagonal > 0 ? exchange.maxAfter / run.diagonal : 0.0;
-    maxima.clear();
-    for (double m : exchange.maxima) maxima.push_back(m / run.scale);
+    result.exchangeMaxima.clear();
+    for (double m : exchange.maxima) result.exchangeMaxima.push_back(m / run.scale);
+    result.creaseFitEntry = exchange.creaseFitEntry;
+    for (double &d : result.creaseFitEntry.distances) d /= run.scale;
     stats.secondsExchanges = run.timer.Lap();
 }
 
@@ -498,7 +507,7 @@ inline std::vector<Surfel> SurfelsAtCount(Run &run, const SurfelMaker &maker,
     Report(run.cb, 90, "Gaussian sphere resampling: surfels");
     std::vector<Surfel> surfels;
     if (run.param.maxErrorExchanges > 0) {
-        ExchangeClusters(run, maker, mergedLinks, surfels, result.exchangeMaxima);
+        ExchangeClusters(run, maker, mergedLinks, surfels, result);
     } else {
         surfels = maker.MakeFitted(run.clusters, [&run]() {
             Report(run.cb, 95, "Gaussian sphere resampling: fitting the surfels to their blend");

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <vcg_ext/gaussphere/size_control/crease_fit_limits.h>
+
 namespace vcg {
 namespace gaussphere {
 
@@ -85,6 +87,14 @@ struct ResamplingParams
     /// distance the exchanges lower (0: every vertex). A tile of a tiled run gives its core points,
     /// which come first: its halo's points are other tiles' to lower. Not a user's parameter.
     int countedVertices = 0;
+    /// TargetCount with exchanges: the percentiles the crease fit after them is judged against, the
+    /// distance in model units (not given: the run's own). A tile of a tiled run takes the whole
+    /// scan's (tools/gstile). Not a user's parameter.
+    CreaseFitLimits creaseFitLimits;
+    /// TargetCount with exchanges: on entry to the crease fit, report this many of the highest
+    /// figures of the points that count (ResamplingResult::creaseFitEntry; 0: none), from which a
+    /// tiled run gathers the whole scan's limits. Not a user's parameter.
+    int reportHighestAtCreaseFit = 0;
 
     ResamplingTuning tuning;
 
@@ -265,6 +275,9 @@ inline std::string ResamplingParams::Validate() const
     if (spreadEvenly && maxErrorFraction > 0) return "SpreadEvenly takes its count from the level or a target, not from MaxError";
     if (exchangeRounds < -1) return "exchangeRounds must be -1 (all of maxErrorExchanges) or at least 0";
     if (countedVertices < 0) return "countedVertices must be at least 0";
+    if (reportHighestAtCreaseFit < 0) return "reportHighestAtCreaseFit must be at least 0";
+    if (creaseFitLimits.given && !(creaseFitLimits.distance >= 0 && creaseFitLimits.normalError >= 0))
+        return "creaseFitLimits must not be negative";
     return tuning.Validate();
 }
 

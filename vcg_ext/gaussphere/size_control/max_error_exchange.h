@@ -62,6 +62,7 @@
 
 #include <vcg_ext/gaussphere/neighbors/adaptive_neighbors.h>
 #include <vcg_ext/gaussphere/size_control/cluster_refinement.h>
+#include <vcg_ext/gaussphere/size_control/crease_fit_limits.h>
 #include <vcg_ext/gaussphere/clustering/clustering.h>
 #include <vcg_ext/gaussphere/size_control/surface_error_bound.h>
 #include <vcg_ext/gaussphere/surfels/surfel_generation.h>
@@ -90,6 +91,11 @@ struct MaxErrorExchangeParams
     /// ... tried at most this many times: each failed trial drops the moves of the surfels within
     /// reach of the points whose figures rose.
     int creaseFitTrials = 4;
+    /// ... judged against these 99.9th percentiles (not given: the run's own on entry to the fit).
+    CreaseFitLimits creaseFitLimits;
+    /// On entry to the crease fit (not made when creaseFitMinMembers is 0), this many of the highest
+    /// figures of the points that count go into MaxErrorExchangeResult::creaseFitEntry (0: none).
+    int reportHighest = 0;
     MergeSpread mergeSpread = MergeSpread::Ward; ///< the merges' cost (MergeCostModel), as the clusters were merged
 };
 
@@ -112,6 +118,7 @@ struct MaxErrorExchangeResult
     double maxBefore = 0;   ///< largest distance to the blended surface before, model units
     double maxAfter = 0;    ///< ... and after
     std::vector<double> maxima; ///< maxBefore, then the largest distance after each kept exchange
+    CreaseFitEntry creaseFitEntry; ///< with MaxErrorExchangeParams::reportHighest (empty if no point counts)
     bool cancelled = false; ///< progress returned false
 };
 
@@ -537,47 +544,76 @@ private:
 
 namespace detail {
 
+/// What FitCreaseSurfels judges its trials by, over the points that count (MaxErrorExchangeParams::
+/// counted), on entry: the run's own figures, the percentiles as given (MaxErrorExchangeParams::
+/// creaseFitLimits) if they are.
+struct CreaseFitBaseline
+{
+    std::vector<float> normalError; ///< per point, for the set on entry
+    double sumOfSquares = 0;        ///< of the distances
+    double largest = 0;             ///< no point that counts may rise above it
+    double distanceLimit = 0, normalLimit = 0; ///< the 99.9th percentiles (or the limits given) ...
+    int distanceBeyond = 0, normalBeyond = 0;  ///< ... and the points beyond them, whose number may not rise
+};
+
+/// The `count` highest of `values`, highest first.
+inline std::vector<double> Highest(std::vector<double> values, std::size_t count)
+{
+    count = std::min(count, values.size());
+    std::partial_sort(values.begin(), values.begin() + std::ptrdiff_t(count), values.end(), std::greater<double>());
+    values.resize(count);
+    return values;
+}
+
+/// The crease fit's baseline for `fitted`, the set `distances` measured; with param.reportHighest,
+/// the highest figures into `entry`. False when no point counts.
+inline bool MeasureCreaseFitBaseline(const PointArray &points, const BlendedDistances &distances,
+                                     const std::vector<Surfel> &fitted, const MaxErrorExchangeParams &param,
+                                     CreaseFitBaseline &base, CreaseFitEntry &entry)
+{
+    const int n = int(points.size());
+    base.normalError = distances.NormalErrors(fitted);
+    std::vector<double> distance, normalError; // of the points that count, in point order
+    for (int i = 0; i < n; ++i) {
+        if (!distances.Counts(i)) continue;
+        distance.push_back(distances.Distance(i));
+        normalError.push_back(base.normalError[size_t(i)]);
+        base.sumOfSquares += distance.back() * distance.back(); // in point order: the same for any thread count
+    }
+    if (distance.empty()) return false;
+    if (param.reportHighest > 0) {
+        entry.distances = Highest(distance, std::size_t(param.reportHighest));
+        entry.normalErrors = Highest(normalError, std::size_t(param.reportHighest));
+    }
+    const CreaseFitLimits &limits = param.creaseFitLimits;
+    base.largest = distances.Max();
+    base.distanceLimit = limits.given ? limits.distance : NearestRankPercentile(distance, 99.9);
+    base.normalLimit = limits.given ? limits.normalError : NearestRankPercentile(std::move(normalError), 99.9);
+    for (std::size_t t = 0; t < distance.size(); ++t) base.distanceBeyond += distance[t] > base.distanceLimit;
+    for (int i = 0; i < n; ++i)
+        if (distances.Counts(i)) base.normalBeyond += base.normalError[size_t(i)] > base.normalLimit;
+    return true;
+}
+
 /// ExchangeForMaxError's last step (file header): the surfels of `current` left at creases, fitted
 /// where the measure allows it. `distances` has measured current.fitted; a kept fit is accepted
 /// there and swapped into `current`. Counts its measures in `trials`; returns the surfels fitted.
+/// With param.reportHighest, `entry` receives the highest figures on entry (crease_fit_limits.h).
 template <class GoOn>
 int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const SurfelMaker &maker,
                      const MaxErrorExchangeParams &param, BlendedDistances &distances, SurfelMaker::Set &current,
-                     int &trials, GoOn &&goOn)
+                     int &trials, CreaseFitEntry &entry, GoOn &&goOn)
 {
     // The surfels left at creases (surfel_offset.h), fitted where the measure allows it: the sum of
     // squared distances must fall, and neither the largest distance, nor the number of points
     // beyond the 99.9th percentiles of the distance and of the blended normal error (their values
-    // on entry to this step) may rise, so neither percentile rises.
+    // on entry to this step, or the limits given) may rise, so neither percentile rises.
     const ClusterMembers members(clusters);
     const std::vector<std::pair<int, float>> moves =
         maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
-    if (moves.empty() || !goOn()) return 0;
-    const int n = int(points.size());
-    const std::vector<float> normalError = distances.NormalErrors(current.fitted);
-    // The figures are over the points that count (MaxErrorExchangeParams::counted).
-    double sumOfSquares = 0;
-    // One copy of the figures at a time (8 B a point).
-    std::vector<double> figures;
-    figures.reserve(points.size());
-    for (int i = 0; i < n; ++i) {
-        if (!distances.Counts(i)) continue;
-        figures.push_back(distances.Distance(i));
-        sumOfSquares += figures.back() * figures.back(); // in point order: the same for any thread count
-    }
-    if (figures.empty()) return 0;
-    const double distanceLimit = NearestRankPercentile(std::move(figures), 99.9);
-    figures.clear(); // moved from: emptied before its reuse
-    figures.reserve(points.size());
-    for (int i = 0; i < n; ++i)
-        if (distances.Counts(i)) figures.push_back(normalError[size_t(i)]);
-    const double normalLimit = NearestRankPercentile(std::move(figures), 99.9);
-    int distanceBeyond = 0, normalBeyond = 0;
-    for (int i = 0; i < n; ++i) {
-        if (!distances.Counts(i)) continue;
-        distanceBeyond += distances.Distance(i) > distanceLimit;
-        normalBeyond += normalError[size_t(i)] > normalLimit;
-    }
+    if ((moves.empty() && param.reportHighest == 0) || !goOn()) return 0;
+    CreaseFitBaseline base;
+    if (!MeasureCreaseFitBaseline(points, distances, current.fitted, param, base, entry) || moves.empty()) return 0;
     // All moves at once; where that raises a figure, the moves of the surfels within reach of
     // the points that rose are dropped and the rest tried again, up to creaseFitTrials times.
     std::vector<std::pair<int, float>> kept = moves;
@@ -587,8 +623,8 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         for (const auto &move : kept) MoveSurfel(fitted[size_t(move.first)], move.second);
         ++trials;
         BlendedDistances::Measure measure = distances.Try(current.fitted, fitted);
-        double squares = sumOfSquares;
-        int dBeyond = distanceBeyond, nBeyond = normalBeyond;
+        double squares = base.sumOfSquares;
+        int dBeyond = base.distanceBeyond, nBeyond = base.normalBeyond;
         std::vector<size_t> rose; // indices into measure.points
         for (size_t t = 0; t < measure.points.size(); ++t) {
             const int i = measure.points[t];
@@ -598,15 +634,17 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
                 continue;
             }
             const double before = distances.Distance(i), after = measure.distance[t];
+            const float normalBefore = base.normalError[size_t(i)], normalAfter = measure.normalError[t];
             squares += after * after - before * before;
-            const bool distanceRose = after > distanceLimit && !(before > distanceLimit);
-            const bool normalRose = measure.normalError[t] > normalLimit && !(normalError[size_t(i)] > normalLimit);
-            dBeyond += int(after > distanceLimit) - int(before > distanceLimit);
-            nBeyond += int(measure.normalError[t] > normalLimit) - int(normalError[size_t(i)] > normalLimit);
-            if (distanceRose || normalRose || after > distances.Max()) rose.push_back(t);
+            const bool distanceRose = after > base.distanceLimit && !(before > base.distanceLimit);
+            const bool normalRose = normalAfter > base.normalLimit && !(normalBefore > base.normalLimit);
+            dBeyond += int(after > base.distanceLimit) - int(before > base.distanceLimit);
+            nBeyond += int(normalAfter > base.normalLimit) - int(normalBefore > base.normalLimit);
+            if (distanceRose || normalRose || after > base.largest) rose.push_back(t);
         }
-        if (!(squares < sumOfSquares)) break;
-        if (measure.Largest() <= distances.Max() && dBeyond <= distanceBeyond && nBeyond <= normalBeyond) {
+        if (!(squares < base.sumOfSquares)) break;
+        if (measure.max <= base.largest && measure.risenMax / kUncountedRiseShare <= distances.Max() &&
+            dBeyond <= base.distanceBeyond && nBeyond <= base.normalBeyond) {
             distances.Accept(std::move(measure));
             current.fitted.swap(fitted);
             return int(kept.size());
@@ -840,7 +878,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         result.maxima.push_back(distances.Max());
     }
     if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn())
-        result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials, goOn);
+        result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials,
+                                                     result.creaseFitEntry, goOn);
     result.maxAfter = distances.Max();
     surfels = std::move(current.fitted);
     return result;
