@@ -98,12 +98,21 @@ inline bool SectorsLeaveNoGapAbove(std::uint32_t occupied, double maxGapDegrees)
 /// otherwise the directions are sorted by key, and the gap from each to the next
 /// counter-clockwise is over half a turn when their keys are more than 2 apart, else it exceeds
 /// the limit when their cosine is below the limit's.
+inline bool GapExceedsExactly(std::vector<TangentDirection> &directions, double maxGapDegrees);
+
 inline bool GapExceeds(std::vector<TangentDirection> &directions, double maxGapDegrees)
 {
     if (directions.size() < 2) return true;
     std::uint32_t occupied = 0;
     for (const TangentDirection &d : directions) occupied |= 1u << SectorOf(float(d.x), float(d.y));
     if (SectorsLeaveNoGapAbove(occupied, maxGapDegrees)) return false;
+    return GapExceedsExactly(directions, maxGapDegrees);
+}
+
+/// GapExceeds without the quick test: the directions sorted by key and measured pair by pair.
+inline bool GapExceedsExactly(std::vector<TangentDirection> &directions, double maxGapDegrees)
+{
+    if (directions.size() < 2) return true;
     for (TangentDirection &d : directions) d.key = d.Key();
     std::sort(directions.begin(), directions.end(),
               [](const TangentDirection &a, const TangentDirection &b) { return a.key < b.key; });
@@ -131,24 +140,29 @@ inline bool IsBoundaryPoint(const PointArray &points, const PointArray &normals,
     const vcg::Point3f &normal = normals[i];
     const vcg::Point3f side = std::abs(normal[0]) < 0.9f ? vcg::Point3f(1, 0, 0) : vcg::Point3f(0, 1, 0);
     const vcg::Point3f u = (normal ^ side).Normalize(), v = normal ^ u;
-    // The quick test first, on the sectors alone; the exact one only where it cannot decide.
+    // The tangent coordinates, then the sectors, in flat loops the compiler vectorizes (this runs
+    // for every point, inside the neighbour search). The quick test first, on the sectors alone;
+    // the exact one only where it cannot decide.
+    float x[255], y[255];
+    int sector[255];
+    for (int t = 0; t < count; ++t) {
+        const vcg::Point3f d = points[neighbors[t]] - points[i];
+        x[t] = d.dot(u);
+        y[t] = d.dot(v);
+    }
+    for (int t = 0; t < count; ++t) sector[t] = SectorOf(x[t], y[t]);
     std::uint32_t occupied = 0;
     int directions = 0;
     for (int t = 0; t < count; ++t) {
-        const vcg::Point3f d = points[neighbors[t]] - points[i];
-        const float x = d.dot(u), y = d.dot(v);
-        if (x == 0 && y == 0) continue;
-        occupied |= 1u << SectorOf(x, y);
-        ++directions;
+        const bool atPoint = x[t] == 0 && y[t] == 0; // no direction
+        occupied |= std::uint32_t(!atPoint) << sector[t];
+        directions += int(!atPoint);
     }
     if (directions >= 2 && SectorsLeaveNoGapAbove(occupied, gapDegrees)) return false;
     scratch.clear();
-    for (int t = 0; t < count; ++t) {
-        const vcg::Point3f d = points[neighbors[t]] - points[i];
-        const float x = d.dot(u), y = d.dot(v);
-        if (x != 0 || y != 0) scratch.emplace_back(x, y);
-    }
-    return GapExceeds(scratch, gapDegrees);
+    for (int t = 0; t < count; ++t)
+        if (x[t] != 0 || y[t] != 0) scratch.emplace_back(x[t], y[t]);
+    return GapExceedsExactly(scratch, gapDegrees);
 }
 
 /// The points flagged in `rim` and those with one among their found neighbours in `graph`
