@@ -93,23 +93,10 @@ inline bool SectorsLeaveNoGapAbove(std::uint32_t occupied, double maxGapDegrees)
 }
 
 /// Whether the largest angular gap between `directions` (non-zero tangent vectors, in any order;
-/// reordered here) exceeds `maxGapDegrees`, in (0, 180). Fewer than two directions: a gap of a
-/// full turn. Most points have neighbours all around, which SectorsLeaveNoGapAbove settles;
-/// otherwise the directions are sorted by key, and the gap from each to the next
-/// counter-clockwise is over half a turn when their keys are more than 2 apart, else it exceeds
-/// the limit when their cosine is below the limit's.
-inline bool GapExceedsExactly(std::vector<TangentDirection> &directions, double maxGapDegrees);
-
-inline bool GapExceeds(std::vector<TangentDirection> &directions, double maxGapDegrees)
-{
-    if (directions.size() < 2) return true;
-    std::uint32_t occupied = 0;
-    for (const TangentDirection &d : directions) occupied |= 1u << SectorOf(float(d.x), float(d.y));
-    if (SectorsLeaveNoGapAbove(occupied, maxGapDegrees)) return false;
-    return GapExceedsExactly(directions, maxGapDegrees);
-}
-
-/// GapExceeds without the quick test: the directions sorted by key and measured pair by pair.
+/// reordered here) exceeds `maxGapDegrees`, in (0, 180), measured exactly: the directions are
+/// sorted by key, and the gap from each to the next counter-clockwise is over half a turn when
+/// their keys are more than 2 apart, else it exceeds the limit when their cosine is below the
+/// limit's. Fewer than two directions: a gap of a full turn.
 inline bool GapExceedsExactly(std::vector<TangentDirection> &directions, double maxGapDegrees)
 {
     if (directions.size() < 2) return true;
@@ -130,10 +117,21 @@ inline bool GapExceedsExactly(std::vector<TangentDirection> &directions, double 
     return false;
 }
 
+/// GapExceedsExactly, with a quick test first: most points have neighbours all around, which
+/// SectorsLeaveNoGapAbove settles.
+inline bool GapExceeds(std::vector<TangentDirection> &directions, double maxGapDegrees)
+{
+    if (directions.size() < 2) return true;
+    std::uint32_t occupied = 0;
+    for (const TangentDirection &d : directions) occupied |= 1u << SectorOf(float(d.x), float(d.y));
+    if (SectorsLeaveNoGapAbove(occupied, maxGapDegrees)) return false;
+    return GapExceedsExactly(directions, maxGapDegrees);
+}
+
 /// Whether point i lies on a boundary: the directions to its neighbours `neighbors[0, count)`,
 /// projected onto its tangent plane, leave a gap wider than gapDegrees. Neighbours at its own
 /// position have no direction and are passed over. `scratch` is reused between calls.
-/// \pre unit normals[i]; gapDegrees in (0, 180).
+/// \pre unit normals[i]; gapDegrees in (0, 180); count <= 255 (NeighborGraph's stride at most).
 inline bool IsBoundaryPoint(const PointArray &points, const PointArray &normals, int i, const int *neighbors,
                             int count, double gapDegrees, std::vector<TangentDirection> &scratch)
 {
