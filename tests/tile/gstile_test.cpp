@@ -575,6 +575,10 @@ TEST(TargetShare, AnOutcomeIsReadBackOrRefusedWithTheFileNamed)
     refused("{\"target\": 120, \"owned\": 80, \"rounds\": -2, \"maxima\": []" + reports, "rounds out of range");
     refused("{\"target\": 120, \"owned\": 80, \"maxima\": []" + reports, "no rounds");
     refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": []}", "no report of its highest figures");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [], \"highest_distances\": [0.1, 0.2], "
+            "\"highest_normal_errors\": []}", "highest figures not highest first");
+    refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [], \"highest_distances\": [], "
+            "\"highest_normal_errors\": [-0.5]}", "a negative normal error");
     refused("{\"target\": 120, \"owned\": 80, \"rounds\": 1, \"maxima\": [], \"crease_fit_limits\": {\"distance\": -1, "
             "\"normal_error\": 1}" + reports, "a negative limit");
 }

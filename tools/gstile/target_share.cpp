@@ -393,6 +393,10 @@ bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::stri
         outcome.entry.distances = j.at("highest_distances").get<std::vector<double>>();
         outcome.entry.normalErrors = j.at("highest_normal_errors").get<std::vector<double>>();
         if (outcome.rounds < -1) throw std::runtime_error("its rounds of exchanges are out of range");
+        for (const std::vector<double> *highest : {&outcome.entry.distances, &outcome.entry.normalErrors})
+            for (std::size_t k = 0; k < highest->size(); ++k)
+                if (!((*highest)[k] >= 0) || (k > 0 && (*highest)[k] > (*highest)[k - 1]))
+                    throw std::runtime_error("its highest figures are negative or not highest first");
         for (std::size_t k = 0; k < outcome.maxima.size(); ++k)
             if (!(outcome.maxima[k] >= 0) || (k > 0 && outcome.maxima[k] > outcome.maxima[k - 1]))
                 throw std::runtime_error("its largest distances are negative or rise");
