@@ -433,8 +433,8 @@ def tiling():
             ("target", ("4000", "8000", "10000", "40000", "100000"), lambda run: f"{int(run):,}", "A target count shared over the tiles",
              "`--target N` whole and tiled (docs/tiling.md, *Size and error controls*); tiled against whole "
              "(below 0: lower tiled; the whole run's rounds of exchanges for the largest error shared over the "
-             "tiles, each at its core points' worst, and each tile's crease fit judged against the whole scan's "
-             "99.9th percentiles):"),
+             "tiles, each at its core points' worst, each tile's crease fit judged against the whole scan's "
+             "99.9th percentiles, then the seam step's rounds beside the surfels its neighbours keep):"),
             ("bound", ("0.002", "0.0005"), lambda run: run, "An error bound over the tiles",
              "`--max-error E` (a fraction of the whole scan's diagonal) whole and tiled (docs/tiling.md, *Size and "
              "error controls*); tiled against whole:")):

@@ -8,9 +8,10 @@ With --input the input is split into TILEDIR first (`gstile split`, on this mach
 TILEDIR holds a split already. With a target count in the split, rounds of tasks run `gstile
 probe TILEDIR ID` on the tiles `gstile tiles TILEDIR --to-probe` lists until it lists none (the
 level search, then the splits' priorities at the level), this machine `gstile share TILEDIR`,
-and after the runs `gstile adjust TILEDIR` shares the rounds of exchanges (the first time) and
-gives the tiles that missed their share a new count; the tiles it lists run again
-(docs/tiling.md). Each task runs `gstile run TILEDIR ID` on a worker, which must see
+and after the runs `gstile adjust TILEDIR` shares the rounds of exchanges (the first time), the
+crease fit limits (the second), takes the seam step (once no tile is left to run: every tile runs
+again beside the surfels its neighbours keep) and gives the tiles that missed their share a new
+count; the tiles it lists run again (docs/tiling.md). Each task runs `gstile run TILEDIR ID` on a worker, which must see
 TILEDIR and the gstile binary at the same paths (a shared folder). Without --scheduler a local
 cluster of --workers processes is started. A worker lost in the middle of a task is replaced by
 the scheduler, which runs the task again elsewhere (a tile's result appears only once complete,

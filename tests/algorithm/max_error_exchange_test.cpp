@@ -246,6 +246,152 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
     EXPECT_EQ(part.exchangeMaxima, std::vector<double>(r.exchangeMaxima.begin(), r.exchangeMaxima.begin() + 3));
 }
 
+// A surround stands in for the clusters it hides: surfels of its own in their place measure as
+// those clusters' did, the hidden surfels count for nothing whatever they become, and a local
+// measure beside a surround still equals a full one. The surfels blended at a point are read in
+// the clusters' numbering, hidden ones and the surround's left out.
+TEST(MaxErrorExchange, ASurroundStandsInForTheClustersItHides)
+{
+    gstest::PointSet cube = gstest::CubeSurface(20, true);
+    std::mt19937 jitterRng(5);
+    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
+    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
+    const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
+    const double diagonal = Diagonal(cube);
+    FixedSurround surround;
+    surround.hidden.assign(r.surfels.size(), 0);
+    for (size_t c = 0; c < r.surfels.size(); c += 3) {
+        surround.hidden[c] = 1;
+        surround.surfels.push_back(r.surfels[c]);
+    }
+    BlendedDistances plain(cube.points, cube.normals, diagonal), beside(cube.points, cube.normals, diagonal, nullptr, &surround);
+    plain.Reset(r.surfels);
+    beside.Reset(r.surfels);
+    for (int i = 0; i < cube.Size(); ++i) ASSERT_NEAR(beside.Distance(i), plain.Distance(i), 1e-9 * diagonal) << i;
+
+    // The hidden surfels moved far off: nothing to measure again.
+    std::vector<Surfel> hiddenMoved = r.surfels;
+    for (size_t c = 0; c < hiddenMoved.size(); c += 3) hiddenMoved[c].position += hiddenMoved[c].normal * float(0.2 * diagonal);
+    EXPECT_TRUE(beside.Try(r.surfels, hiddenMoved).points.empty());
+
+    // Visible ones changed: the local measure is the full one, and differs from the plain run's.
+    std::vector<Surfel> changed = hiddenMoved;
+    for (size_t c = 1; c < changed.size(); c += 7) changed[c].position += changed[c].normal * float(0.01 * diagonal);
+    BlendedDistances::Measure m = beside.Try(r.surfels, changed);
+    ASSERT_FALSE(m.points.empty());
+    beside.Accept(std::move(m));
+    BlendedDistances full(cube.points, cube.normals, diagonal, nullptr, &surround);
+    full.Reset(changed);
+    for (int i = 0; i < cube.Size(); ++i) ASSERT_NEAR(beside.Distance(i), full.Distance(i), 1e-9 * diagonal) << i;
+
+    // What a point blends: the whole surface of the surround and the visible surfels, mapped to
+    // the clusters' numbering, the surround's left out.
+    std::vector<Surfel> blended = surround.surfels;
+    std::vector<int> cluster(surround.surfels.size(), -1);
+    for (size_t c = 0; c < changed.size(); ++c)
+        if (!surround.hidden[c]) {
+            blended.push_back(changed[c]);
+            cluster.push_back(int(c));
+        }
+    const vcg::gaussphere::SurfelSurface whole = BlendedSurfaceOf(blended);
+    vcg::gaussphere::SurfelSurface::Scratch scratch;
+    int surroundSeen = 0;
+    for (int i = 0; i < cube.Size(); i += 41) {
+        whole.Project(vcg::Point3d::Construct(cube.points[i]), vcg::Point3d::Construct(cube.normals[i]),
+                      vcg::gaussphere::metric::SurfelErrorParams().maxIterations,
+                      vcg::gaussphere::metric::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
+        std::vector<std::pair<float, int>> nearest;
+        for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
+            const int b = scratch.queue.getIndex(j);
+            if (cluster[size_t(b)] < 0) ++surroundSeen;
+            else if (blended[size_t(b)].normal.dot(cube.normals[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), cluster[size_t(b)]});
+        }
+        std::sort(nearest.begin(), nearest.end());
+        std::vector<int> expected;
+        for (const auto &e : nearest) expected.push_back(e.second);
+        EXPECT_EQ(beside.BlendedAt(i, changed), expected) << "point " << i;
+    }
+    EXPECT_GT(surroundSeen, 0) << "the surround's surfels are blended at the points sampled";
+
+    // Hidden and not replaced: a third of the surface is gone, the points there measure otherwise.
+    FixedSurround holes;
+    holes.hidden = surround.hidden;
+    BlendedDistances withHoles(cube.points, cube.normals, diagonal, nullptr, &holes);
+    withHoles.Reset(r.surfels);
+    int moved = 0;
+    for (int i = 0; i < cube.Size(); ++i) moved += std::abs(withHoles.Distance(i) - plain.Distance(i)) > 1e-3 * diagonal;
+    EXPECT_GT(moved, cube.Size() / 5);
+    EXPECT_GT(withHoles.Max(), plain.Max());
+}
+
+// The ownership rule of a surround: a cluster is the run's where its member of smallest key
+// counts, the keys given or the point indices.
+TEST(MaxErrorExchange, ARunKeepsTheClustersWhoseAnchorCounts)
+{
+    FixedSurround surround;
+    surround.anchorKeys = {5, 1, 7, 3};
+    const std::vector<char> counted = {0, 1, 1, 0};
+    EXPECT_TRUE(surround.Kept({0, 1}, counted)) << "anchor: point 1";
+    EXPECT_FALSE(surround.Kept({0, 2, 3}, counted)) << "anchor: point 3";
+    EXPECT_TRUE(surround.Kept({2}, counted));
+    EXPECT_FALSE(surround.Kept({}, counted));
+    Clustering clusters;
+    clusters.label = {0, 1, 1, 0, 2};
+    clusters.clusterCount = 3;
+    surround.anchorKeys = {5, 1, 7, 3, 0};
+    const std::vector<char> countedFive = {0, 1, 1, 0, 1};
+    surround.HideClustersNotKept(clusters, countedFive);
+    EXPECT_EQ(surround.hidden, (std::vector<char>{1, 0, 0})) << "anchors: points 3, 1 and 4";
+    surround.anchorKeys.clear();
+    surround.HideClustersNotKept(clusters, {1, 0, 1, 1, 0});
+    EXPECT_EQ(surround.hidden, (std::vector<char>{0, 1, 1})) << "anchors: points 0, 1 and 4";
+}
+
+// Surrounding surfels: the rounds before the seam rounds are those of the run without them; the
+// seam rounds keep the count and the number of clusters the run keeps (a split keeps both halves,
+// a merge joins two it keeps), and lower the largest distance measured beside the surround.
+TEST(MaxErrorExchange, TheSeamRoundsKeepWhatTheRunKeeps)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    const int counted = cube.Size() / 2;
+    ResamplingParams alone = AtTarget(150, 16);
+    alone.countedVertices = counted;
+    // The surround: what a run without exchanges keeps where the points do not count, coarser
+    // than what the exchanges make there.
+    const ResamplingResult other = gstest::Resample(cube, AtTarget(120, 0));
+    ResamplingParams param = alone;
+    std::vector<char> beyond(other.surfels.size(), 0);
+    for (int i = counted; i < cube.Size(); ++i) beyond[size_t(other.representative[size_t(i)])] = 1;
+    for (size_t c = 0; c < other.surfels.size(); ++c)
+        if (beyond[c]) param.surroundingSurfels.push_back(other.surfels[c]);
+    ASSERT_FALSE(param.surroundingSurfels.empty());
+
+    const ResamplingResult without = gstest::Resample(cube, alone), r = gstest::Resample(cube, param);
+    gstest::ExpectValidResult(r, cube);
+    EXPECT_EQ(int(r.surfels.size()), 150);
+    EXPECT_EQ(r.exchangeMaxima, without.exchangeMaxima) << "the rounds before the seam rounds";
+    EXPECT_EQ(without.stats.seamExchanges, 0);
+    EXPECT_GT(r.stats.seamExchanges, 0);
+    EXPECT_LT(r.stats.seamMaxAfter, r.stats.seamMaxBefore);
+    // The clusters the run keeps: those whose first vertex (the anchor, without anchorKeys) counts.
+    const auto keptCount = [counted](const ResamplingResult &result) {
+        std::vector<int> anchor(result.surfels.size(), -1);
+        for (int i = 0; i < int(result.representative.size()); ++i) {
+            const int c = result.representative[size_t(i)];
+            if (anchor[size_t(c)] < 0) anchor[size_t(c)] = i;
+        }
+        return std::count_if(anchor.begin(), anchor.end(), [counted](int a) { return a < counted; });
+    };
+    EXPECT_EQ(keptCount(r), keptCount(without));
+
+    ResamplingParams uncountedSurround = param;
+    uncountedSurround.countedVertices = 0;
+    EXPECT_NE(uncountedSurround.Validate(), "");
+    ResamplingParams wrongKeys = param;
+    wrongKeys.anchorKeys.assign(3, 0);
+    EXPECT_THROW(gstest::Resample(cube, wrongKeys), std::invalid_argument);
+}
+
 TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)
 {
     const gstest::PointSet cube = gstest::CubeSurface(24, true);

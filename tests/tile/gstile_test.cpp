@@ -818,13 +818,22 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     EXPECT_GT(roundsInAll, 0);
     EXPECT_LE(roundsInAll, options.param.maxErrorExchanges);
     EXPECT_FALSE(sharedRounds.creaseFitLimits.given) << "the limits wait for every tile's run at its rounds";
-    std::uint64_t rounds = 0;
+    std::uint64_t rounds = 0, seamRound = 0;
     for (AdjustFigures round = first; !round.rerun.empty(); ++rounds) {
         for (const int id : round.rerun) ASSERT_TRUE(RunTile(dir, manifest, id, figures, error)) << error;
         ASSERT_TRUE(AdjustShares(dir, manifest, round, error)) << error;
+        if (!round.seamTaken) continue;
+        EXPECT_EQ(seamRound, 0u) << "the seam step is taken once";
+        seamRound = rounds + 1;
+        EXPECT_EQ(round.rerun.size(), manifest.tiles.size()) << "every tile runs again with its neighbours' snapshots";
+        for (const TileEntry &t : manifest.tiles)
+            EXPECT_TRUE(std::ifstream(TilePath(dir, t.id, ".seam"))) << "tile " << t.id << "'s snapshot";
     }
-    EXPECT_LE(rounds, kAdjustRounds + 2) << "a tile's new counts, their nearest, and a run for its rounds";
+    EXPECT_GT(seamRound, 1u) << "after the rounds of exchanges and the crease fit limits are shared";
+    EXPECT_LE(rounds, 2 * kAdjustRounds + 3) << "a tile's new counts, their nearest, a run for its rounds, the seam "
+                                                "step and new counts after it";
     ASSERT_TRUE(ReadShares(dir, sharedRounds, error)) << error;
+    EXPECT_TRUE(sharedRounds.seam);
     ASSERT_TRUE(sharedRounds.creaseFitLimits.given);
     EXPECT_GT(sharedRounds.creaseFitLimits.distance, 0);
     EXPECT_GT(sharedRounds.creaseFitLimits.normalError, 0);
@@ -835,6 +844,7 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
         EXPECT_TRUE(RanAtRounds(outcome, share)) << "tile " << share.id << ": rounds " << outcome.rounds;
         EXPECT_LE(outcome.maxima.size(), std::size_t(share.rounds) + 1) << "tile " << share.id;
         EXPECT_TRUE(outcome.limits == sharedRounds.creaseFitLimits) << "tile " << share.id << ": the scan's crease fit limits";
+        EXPECT_TRUE(outcome.seam) << "tile " << share.id << ": run after the seam step";
     }
     MergeFigures merged;
     ASSERT_TRUE(Merge(dir, manifest, dir + "/merged.surfel", merged, error)) << error;

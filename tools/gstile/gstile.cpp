@@ -41,7 +41,8 @@ const char *const kUsage =
     "--percentage, probe runs the tiles --to-probe lists (again, until it lists none: the level\n"
     "search, then the priorities of the splits there), share divides the count as the whole run\n"
     "would spend it, and adjust gives the tiles that missed their share a new count, up to 3 times\n"
-    "a tile, and shares the whole run's rounds of exchanges, then its crease fit limits.\n"
+    "a tile, and shares the whole run's rounds of exchanges, then its crease fit limits, then takes the\n"
+    "seam step: every tile runs again beside the surfels its neighbours keep.\n"
     "gsresample's options:\n";
 
 struct UsageError
@@ -175,6 +176,8 @@ int AdjustAndReport(const std::string &dir, const Manifest &manifest, std::vecto
                       limits.distance, limits.normalError);
         PrintLine(line);
     }
+    if (figures.seamTaken)
+        PrintLine("[adjust] the seam step: every tile runs again with the surfels its neighbours keep around it");
     rerun = figures.rerun;
     return 0;
 }

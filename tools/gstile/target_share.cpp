@@ -12,6 +12,7 @@
 #include <vcg_ext/surfel/percentile.h>
 
 #include "border_points.h"
+#include "seam.h"
 #include "tile_files.h"
 #include "tile_params.h"
 
@@ -297,6 +298,7 @@ bool WriteShareList(const std::string &dir, const Shares &shares, std::string &e
     }
     json j = {{"target", shares.target}, {"level", shares.level}, {"tiles", list}};
     if (shares.creaseFitLimits.given) j["crease_fit_limits"] = LimitsJson(shares.creaseFitLimits);
+    if (shares.seam) j["seam"] = true;
     return WriteJsonFile(SharesPath(dir), j, error);
 }
 
@@ -323,6 +325,7 @@ bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
         shares.target = j.at("target").get<std::uint64_t>();
         shares.level = j.at("level").get<int>();
         shares.creaseFitLimits = LimitsOf(j.value("crease_fit_limits", json()));
+        shares.seam = j.value("seam", false);
         for (const json &t : j.at("tiles")) {
             TileShare share;
             share.id = t.at("id").get<int>();
@@ -375,6 +378,7 @@ bool WriteOutcome(const std::string &dir, int id, const TileOutcome &outcome, st
               {"maxima", outcome.maxima}, {"highest_distances", outcome.entry.distances},
               {"highest_normal_errors", outcome.entry.normalErrors}};
     if (outcome.limits.given) j["crease_fit_limits"] = LimitsJson(outcome.limits);
+    if (outcome.seam) j["seam"] = true;
     return WriteJsonFile(TilePath(dir, id, ".kept"), j, error);
 }
 
@@ -390,6 +394,7 @@ bool ReadOutcome(const std::string &dir, int id, TileOutcome &outcome, std::stri
         outcome.rounds = j.at("rounds").get<int>();
         outcome.maxima = j.at("maxima").get<std::vector<double>>();
         outcome.limits = LimitsOf(j.value("crease_fit_limits", json()));
+        outcome.seam = j.value("seam", false);
         outcome.entry.distances = j.at("highest_distances").get<std::vector<double>>();
         outcome.entry.normalErrors = j.at("highest_normal_errors").get<std::vector<double>>();
         if (outcome.rounds < -1) throw std::runtime_error("its rounds of exchanges are out of range");
@@ -550,6 +555,17 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         const bool newCount = !rerun[s] && AdjustShare(shares[s], outcomes[s], tile->corePoints + tile->haloPoints);
         if (rerun[s] || newCount || outcomes[s].limits != all.creaseFitLimits) figures.rerun.push_back(shares[s].id);
     }
+    if (figures.rerun.empty() && all.creaseFitLimits.given && !all.seam) {
+        // Every tile ran at its share: the snapshots of what they keep, and every tile again.
+        if (!SnapshotForSeam(dir, manifest, error)) return false;
+        all.seam = figures.seamTaken = true;
+        // What a count kept before the seam step is no guide after it: the border points the
+        // merge rescues move with the surfels (border_points.h).
+        for (TileShare &share : shares) {
+            share.tried.clear();
+            figures.rerun.push_back(share.id);
+        }
+    }
     return WriteShareList(dir, all, error);
 }
 
@@ -565,7 +581,7 @@ bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<
             const auto share = std::find_if(shares.begin(), shares.end(), [&tile](const TileShare &s) { return s.id == tile.id; });
             TileOutcome outcome;
             done = share != shares.end() && ReadOutcome(dir, tile.id, outcome, error) && outcome.target == share->target &&
-                   RanAtRounds(outcome, *share) && outcome.limits == all.creaseFitLimits;
+                   RanAtRounds(outcome, *share) && outcome.limits == all.creaseFitLimits && outcome.seam == all.seam;
             if (!error.empty()) return false;
         }
         if (!done) pending.push_back(tile.id);

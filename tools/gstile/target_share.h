@@ -135,6 +135,9 @@ struct Shares
     /// The whole scan's figures every tile's crease fit is judged against (WholeScanCreaseFitLimits),
     /// given once the rounds of exchanges are shared.
     vcg::gaussphere::CreaseFitLimits creaseFitLimits;
+    /// Whether the seam step was taken (seam.h): every tile runs with its neighbours' snapshots
+    /// around it from then on.
+    bool seam = false;
     /// Whether the tiles' rounds of exchanges are shared (ShareExchangeRounds gives every tile
     /// its rounds at once).
     bool RoundsShared() const
@@ -176,6 +179,7 @@ struct TileOutcome
     vcg::gaussphere::CreaseFitLimits limits; ///< what its crease fit was judged against (Shares::creaseFitLimits)
     /// Its core points' highest figures on entry to the crease fit, HighestToReport of each.
     vcg::gaussphere::CreaseFitEntry entry;
+    bool seam = false; ///< run with its neighbours' seam snapshots around it (Shares::seam)
 };
 
 /// The highest figures of its core points a tile reports on entry to its crease fit, for a scan of
@@ -244,18 +248,21 @@ struct AdjustFigures
     std::uint64_t kept = 0;   ///< surfels the merge keeps of the tiles' last runs, rescued ones included
     std::vector<int> rerun;   ///< tiles to run again: a new count, rounds of exchanges or crease fit limits
     vcg::gaussphere::CreaseFitLimits sharedLimits; ///< the crease fit limits this round shared (not given: none)
+    bool seamTaken = false; ///< this round took the seam step
 };
 
 /// Reads every tile's outcome, border record and the shares, adjusts the tiles whose kept surfels
 /// (rescued ones included) missed their share and writes SharesPath(dir). The first time it also
 /// shares the rounds of exchanges (ShareExchangeRounds; none at --exchanges 0): a tile that kept
-/// more exchanges than its part runs again (RanAtRounds). It writes no outcome, so a stop before
-/// SharesPath(dir) is written leaves the tile directory as it found it. An error names a tile that
-/// has not run at its share's count.
+/// more exchanges than its part runs again (RanAtRounds); the second time the crease fit limits;
+/// the first time after that when no tile has to run again, it takes the seam step (seam.h: the
+/// snapshots, then every tile runs again). It writes no outcome, so a stop before SharesPath(dir)
+/// is written leaves the tile directory as it found it. An error names a tile that has not run at
+/// its share's count.
 bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigures &figures, std::string &error);
 
-/// The tiles whose result or border record is missing, or whose run was at another count or
-/// rounds of exchanges than their share's.
+/// The tiles whose result or border record is missing, or whose run was at another count, rounds
+/// of exchanges, crease fit limits or seam step than their share's.
 bool PendingTiles(const std::string &dir, const Manifest &manifest, std::vector<int> &pending, std::string &error);
 
 /// False, with an error naming the first of them, when PendingTiles lists a tile.

@@ -10,6 +10,7 @@
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 #include <io_surfel/surfel_records_mesh.h>
 
+#include "seam.h"
 #include "tile_params.h"
 
 using namespace vcg::gaussphere;
@@ -152,6 +153,7 @@ bool ResampleTile(const std::string &dir, const Manifest &manifest, const TileEn
     ResamplingParams param;
     if (!LoadTile(dir, tile, out.mesh, out.indices, param, manifest, error)) return false;
     adapt(param);
+    if (!param.surroundingSurfels.empty()) param.anchorKeys = out.indices; // the ownership rule's
     try {
         out.result = ResamplePointSet(out.mesh, param);
     } catch (const std::exception &e) {
@@ -322,7 +324,12 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     ResampledTile tile;
     // With a target, a tile whose share is 0 keeps nothing and needs no run.
     const bool run = manifest.targetCount == 0 || share.target > 0;
-    const auto adapt = [&manifest, &shares, &share, entry](ResamplingParams &param) {
+    std::vector<Surfel> surround;
+    if (run && shares.seam && !ReadSurround(dir, manifest, id, surround, error)) {
+        error = name + ": " + error;
+        return false;
+    }
+    const auto adapt = [&manifest, &shares, &share, &surround, entry](ResamplingParams &param) {
         if (manifest.targetCount == 0) return;
         AtShare(shares.level, share.target)(param);
         // The tile's part of the whole run's exchanges, for the largest distance among its core
@@ -332,6 +339,8 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         param.countedVertices = int(entry->corePoints);
         param.creaseFitLimits = shares.creaseFitLimits;
         param.reportHighestAtCreaseFit = int(std::min<std::size_t>(HighestToReport(manifest.points), entry->corePoints));
+        // After the seam step, its neighbours' kept surfels beyond its faces (seam.h).
+        param.surroundingSurfels = std::move(surround);
     };
     if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;
@@ -351,7 +360,7 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         !WriteResult(TilePath(dir, id, ".surfel"), kept, error) ||
         (manifest.targetCount > 0 &&
          !WriteOutcome(dir, id, {share.target, kept.size(), share.rounds, tile.result.exchangeMaxima,
-                                 shares.creaseFitLimits, tile.result.creaseFitEntry}, error))) {
+                                 shares.creaseFitLimits, tile.result.creaseFitEntry, shares.seam}, error))) {
         error = name + ": " + error;
         return false;
     }
@@ -361,18 +370,24 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
     figures.clusters = int(tile.result.surfels.size());
     figures.owned = int(kept.size());
     figures.stats = tile.result.stats;
+    figures.seam = shares.seam && run;
     figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
 }
 
 std::string FiguresLine(const TileRunFigures &f, std::size_t position, std::size_t tileCount)
 {
-    char line[200];
-    std::snprintf(line, sizeof line,
+    char line[300];
+    int length = std::snprintf(line, sizeof line,
                   "[run] %zu/%zu: tile %d, %llu core + %llu halo points -> %d surfels, %d owned (%llu points), "
                   "level %d, %.2f s",
                   position, tileCount, f.id, (unsigned long long)f.corePoints, (unsigned long long)f.haloPoints, f.clusters,
                   f.owned, (unsigned long long)f.ownedMembers, f.stats.levelUsed, f.seconds);
+    if (f.seam && length > 0 && length < int(sizeof line))
+        std::snprintf(line + length, sizeof line - std::size_t(length),
+                      "; beside its neighbours' surfels: largest distance %.4g -> %.4g (model units), %d exchanges",
+                      f.stats.seamMaxBefore * f.stats.diagonal, f.stats.seamMaxAfter * f.stats.diagonal,
+                      f.stats.seamExchanges);
     return line;
 }
 

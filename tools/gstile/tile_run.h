@@ -30,6 +30,7 @@ struct TileRunFigures
     int owned = 0;                ///< ... of which the tile keeps
     std::uint64_t ownedMembers = 0; ///< points the kept surfels represent
     double seconds = 0;
+    bool seam = false;            ///< run after the seam step, beside its neighbours' snapshots
     vcg::gaussphere::ResamplingStats stats;
 };
 

@@ -105,6 +105,10 @@ struct ResamplingStats
     int creaseFitsForMaxError = 0; ///< ... surfels at creases fitted by their last step (max_error_exchange.h)
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
+    /// Seam rounds beside ResamplingParams::surroundingSurfels: exchanges kept, the largest
+    /// distance measured there before and after them, over `diagonal`
+    int seamExchanges = 0;
+    double seamMaxBefore = 0, seamMaxAfter = 0;
     int threadsUsed = 0;           ///< OpenMP threads the run could take (the host's setting)
     double meanAdaptiveNeighbors = 0;
     double normalErrorRms = 0;     ///< L2,1 error |n_i - n_surfel| of each point against its own surfel: RMS
@@ -458,6 +462,20 @@ inline std::vector<std::vector<int>> MergeClustersToCount(Run &run, int target, 
     return std::move(basis->adjacent);
 }
 
+/// ResamplingParams::surroundingSurfels at unit scale, and the anchor keys of run's points
+/// (ResamplingParams::anchorKeys, else the vertex indices).
+inline FixedSurround Surround(const Run &run)
+{
+    FixedSurround surround;
+    surround.surfels = run.param.surroundingSurfels;
+    if (!ScaleSurfels(run.scale, surround.surfels)) throw std::overflow_error("a surrounding surfel overflows at unit scale");
+    const std::vector<std::uint64_t> &keys = run.param.anchorKeys;
+    surround.anchorKeys.resize(run.points.size());
+    for (size_t i = 0; i < run.points.size(); ++i)
+        surround.anchorKeys[i] = keys.empty() ? std::uint64_t(run.source[i]) : keys[size_t(run.source[i])];
+    return surround;
+}
+
 /// The exchanges of clusters for the largest error (max_error_exchange.h); `surfels` receives
 /// the kept set, `result` the largest distance before them and after each kept one, and the
 /// crease fit's report.
@@ -477,6 +495,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     exchangeParam.creaseFitLimits = run.param.creaseFitLimits;
     exchangeParam.creaseFitLimits.distance *= run.scale;
     exchangeParam.reportHighest = run.param.reportHighestAtCreaseFit;
+    if (!run.param.surroundingSurfels.empty()) exchangeParam.surround = Surround(run);
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
         [&run](int round) {
@@ -487,6 +506,9 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     if (exchange.cancelled) throw ResamplingCancelled();
     ResamplingStats &stats = run.stats;
     stats.exchangesForMaxError = exchange.exchanges;
+    stats.seamExchanges = exchange.seamExchanges;
+    stats.seamMaxBefore = run.diagonal > 0 ? exchange.seamMaxBefore / run.diagonal : 0.0;
+    stats.seamMaxAfter = run.diagonal > 0 ? exchange.seamMaxAfter / run.diagonal : 0.0;
     stats.exchangeTrials = exchange.trials;
     stats.creaseFitsForMaxError = exchange.creaseFits;
     stats.exchangeMaxBefore = run.diagonal > 0 ? exchange.maxBefore / run.diagonal : 0.0;
@@ -665,6 +687,8 @@ ResamplingResult ResamplePointSet(const MeshType &mesh, const ResamplingParams &
 {
     const std::string invalid = param.Validate();
     if (!invalid.empty()) throw std::invalid_argument(invalid);
+    if (!param.anchorKeys.empty() && param.anchorKeys.size() != mesh.vert.size())
+        throw std::invalid_argument("anchorKeys must hold one key per vertex");
     ResamplingResult result;
     result.stats.sizeMode = param.SizeMode();
     result.stats.threadsUsed = omp_get_max_threads();

@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include <vcg_ext/gaussphere/size_control/crease_fit_limits.h>
+#include <vcg_ext/surfel/surfel.h>
 
 namespace vcg {
 namespace gaussphere {
@@ -95,6 +97,15 @@ struct ResamplingParams
     /// figures of the points that count (ResamplingResult::creaseFitEntry; 0: none), from which a
     /// tiled run gathers the whole scan's limits. Not a user's parameter.
     int reportHighestAtCreaseFit = 0;
+    /// TargetCount with exchanges and countedVertices: surfels kept by other runs around this one,
+    /// in model units (a tile's neighbours' beyond its faces). After the crease fit, seam rounds of
+    /// exchanges measure every point on them in place of the clusters this run does not keep (those
+    /// whose anchor, the member of smallest anchorKeys entry, is not counted) and lower the largest
+    /// distance so measured towards the one the run reached without them. Not a user's parameter.
+    std::vector<Surfel> surroundingSurfels;
+    /// ... per vertex (empty: the vertex index). A tile of a tiled run gives its points' input
+    /// indices, as its ownership rule reads them (tools/gstile). Not a user's parameter.
+    std::vector<std::uint64_t> anchorKeys;
 
     ResamplingTuning tuning;
 
@@ -278,6 +289,8 @@ inline std::string ResamplingParams::Validate() const
     if (reportHighestAtCreaseFit < 0) return "reportHighestAtCreaseFit must be at least 0";
     if (creaseFitLimits.given && !(creaseFitLimits.distance >= 0 && creaseFitLimits.normalError >= 0))
         return "creaseFitLimits must not be negative";
+    if (!surroundingSurfels.empty() && countedVertices == 0)
+        return "surroundingSurfels stand beside the counted vertices: countedVertices must be given";
     return tuning.Validate();
 }
 

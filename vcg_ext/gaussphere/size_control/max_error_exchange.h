@@ -21,7 +21,7 @@
 // keeps blend too), and the merge half takes no cluster with such a point (its neighbour decides
 // there).
 //
-// Last, the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
+// Then the surfels the fit leaves in place at creases (surfel_offset.h: moved towards the blend's
 // rounded edge, a small crease cluster leaves its face) are fitted too, all at once, if that lowers
 // the sum of squared distances without raising the largest distance, nor the number of points
 // beyond the 99.9th percentile of the distance or of the blended normal error on entry (so
@@ -32,6 +32,11 @@
 // a projection of every point for the blended normal errors and one to four trials. It comes
 // after the exchanges, not in the recipe they try: crease surfels fitted before the exchanges
 // raise the largest distance on some models, and the exchanges then stop early.
+//
+// A tile given the surfels its neighbours keep (FixedSurround: its seam step, tools/gstile/seam.h)
+// then makes seam rounds: every point measured on those in place of the clusters the tile does not
+// keep, exchanges (a split only into halves the tile keeps) while one lowers the largest distance
+// so measured, down to the one it reached on its own clusters.
 //
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
@@ -50,6 +55,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <functional>
 #include <iterator>
@@ -70,6 +76,44 @@
 
 namespace vcg {
 namespace gaussphere {
+
+/// Surfels that blend beside a run's own and never change, and the run's clusters they stand in
+/// for: a tile's neighbours keep the surfels beyond its faces, so its points there lie as far from
+/// the merged output as from those, not from the clusters its halo gives it.
+struct FixedSurround
+{
+    std::vector<Surfel> surfels; ///< blended in every measure, at the points' scale
+    /// Per point (empty: its index), the key of the rule that decides which clusters the run keeps:
+    /// those whose anchor, the member of smallest key, counts (MaxErrorExchangeParams::counted).
+    std::vector<std::uint64_t> anchorKeys;
+    std::vector<char> hidden;    ///< per cluster (missing: 0): nonzero where its surfel is not blended
+    bool Given() const { return !surfels.empty() || !hidden.empty(); }
+
+    /// Whether the run keeps a cluster of `members` (indices of points) by that rule.
+    bool Kept(const std::vector<int> &members, const std::vector<char> &counted) const
+    {
+        int anchor = -1;
+        for (int i : members)
+            if (anchor < 0 || Key(i) < Key(anchor)) anchor = i;
+        return anchor >= 0 && (counted.empty() || counted[size_t(anchor)] != 0);
+    }
+
+    /// Hides the clusters of `clusters` the run does not keep.
+    void HideClustersNotKept(const Clustering &clusters, const std::vector<char> &counted)
+    {
+        std::vector<int> anchor(size_t(clusters.clusterCount), -1);
+        for (size_t i = 0; i < clusters.label.size(); ++i) {
+            const int c = clusters.label[i];
+            if (c >= 0 && (anchor[size_t(c)] < 0 || Key(int(i)) < Key(anchor[size_t(c)]))) anchor[size_t(c)] = int(i);
+        }
+        hidden.assign(anchor.size(), 0);
+        for (size_t c = 0; c < anchor.size(); ++c)
+            hidden[c] = !(anchor[c] >= 0 && (counted.empty() || counted[size_t(anchor[c])] != 0));
+    }
+
+private:
+    std::uint64_t Key(int i) const { return anchorKeys.empty() ? std::uint64_t(i) : anchorKeys[size_t(i)]; }
+};
 
 /// Search widths: one split candidate and one merge per round often find no exchange that lowers
 /// the largest distance; 6 split candidates (nearest the worst point first) and 4 merges per split
@@ -97,6 +141,11 @@ struct MaxErrorExchangeParams
     /// figures of the points that count go into MaxErrorExchangeResult::creaseFitEntry (0: none).
     int reportHighest = 0;
     MergeSpread mergeSpread = MergeSpread::Ward; ///< the merges' cost (MergeCostModel), as the clusters were merged
+    /// Surfels kept elsewhere around the points, blended in place of the clusters it hides
+    /// (FixedSurround). Given, the seam rounds follow the crease fit: exchanges measured beside it
+    /// (a split keeps both halves, FixedSurround::Kept), while one lowers the largest distance so
+    /// measured and it lies above maxAfter, at most maxRounds.
+    FixedSurround surround;
 };
 
 /// How far a point that does not count may rise, as a share of the largest distance. A tile
@@ -118,6 +167,10 @@ struct MaxErrorExchangeResult
     double maxBefore = 0;   ///< largest distance to the blended surface before, model units
     double maxAfter = 0;    ///< ... and after
     std::vector<double> maxima; ///< maxBefore, then the largest distance after each kept exchange
+    /// With MaxErrorExchangeParams::surround, the seam rounds after the crease fit: exchanges kept,
+    /// the largest distance measured beside the surround before and after them.
+    int seamExchanges = 0;
+    double seamMaxBefore = 0, seamMaxAfter = 0;
     CreaseFitEntry creaseFitEntry; ///< with MaxErrorExchangeParams::reportHighest (empty if no point counts)
     bool cancelled = false; ///< progress returned false
 };
@@ -131,14 +184,19 @@ struct MaxErrorExchangeResult
 /// found through the tree of the set Reset measured (the unchanged ones sit where they sat then)
 /// and the list of those changed since. A whole surface would cost tens of milliseconds per trial
 /// at 100,000 surfels, and seconds at 2 million.
+///
+/// With a FixedSurround, the set blended is its surfels followed by the clusters' surfels it does
+/// not hide (cluster c at Offset() + c); the indices below are those of that set, unless they
+/// name a cluster.
 class BlendedDistances
 {
 public:
     /// `counted`, if given and not empty, flags the points whose distances count for Max() and
-    /// Worst(); it must outlive this object.
+    /// Worst(); `surround`, if given, blends beside the clusters' surfels. Both must outlive this object.
     BlendedDistances(const PointArray &points, const PointArray &normals, double diagonal,
-                     const std::vector<char> *counted = nullptr)
+                     const std::vector<char> *counted = nullptr, const FixedSurround *surround = nullptr)
         : points_(points), normals_(normals), counted_(counted != nullptr && !counted->empty() ? counted : nullptr),
+          surround_(surround != nullptr && surround->Given() ? surround : nullptr),
           tolerance_(metric_.convergenceTolerance * diagonal)
     {}
 
@@ -164,7 +222,7 @@ public:
     /// Measures `surfels` (one per cluster) at every point and makes them the current set.
     /// `step`, if given, is called between blocks of points (seconds apart at tens of millions of
     /// points); when it returns false the measure stops and Reset returns false.
-    bool Reset(const std::vector<Surfel> &surfels, const std::function<bool()> &step = nullptr)
+    bool Reset(const std::vector<Surfel> &clusterSurfels, const std::function<bool()> &step = nullptr)
     {
         const int n = int(points_.size());
         distance_.assign(n, 0.0);
@@ -173,8 +231,11 @@ public:
         worst_ = -1;
         measured_.reset();
         changedSinceReset_.clear();
+        std::vector<Surfel> scratch;
+        const std::vector<Surfel> &surfels = Blended(clusterSurfels, scratch);
+        measuredIndex_ = Visible(surfels);
         if (n == 0 || surfels.empty()) return true;
-        SurfelSurface whole = BlendedSurfaceOf(surfels, metric_);
+        SurfelSurface whole = WholeSurface(surfels);
         const int block = 1 << 16;
         for (int start = 0; start < n; start += block) {
             if (step && !step()) return false;
@@ -191,8 +252,11 @@ public:
 
     /// Measures `surfels` where they differ from `current`, the set last measured (Reset, or the
     /// one whose Measure was accepted); same cluster numbering, extra surfels count as changed.
-    Measure Try(const std::vector<Surfel> &current, const std::vector<Surfel> &surfels) const
+    Measure Try(const std::vector<Surfel> &currentClusters, const std::vector<Surfel> &clusterSurfels) const
     {
+        std::vector<Surfel> currentScratch, scratch;
+        const std::vector<Surfel> &current = Blended(currentClusters, currentScratch);
+        const std::vector<Surfel> &surfels = Blended(clusterSurfels, scratch);
         Measure m;
         std::vector<vcg::Point3d> moved; // old and new centres of every surfel that changed
         std::vector<int> changed;
@@ -228,12 +292,14 @@ public:
     /// |n_q - blended normal| at every point for `surfels`, the set last measured (one projection
     /// of every point on a surface of all of them, in blocks: the distances and reaches it also
     /// gives are not kept, 12 B a point at the exchanges' memory peak).
-    std::vector<float> NormalErrors(const std::vector<Surfel> &surfels) const
+    std::vector<float> NormalErrors(const std::vector<Surfel> &clusterSurfels) const
     {
         const int n = int(points_.size());
         std::vector<float> normalError(points_.size(), 0.f);
+        std::vector<Surfel> scratch;
+        const std::vector<Surfel> &surfels = Blended(clusterSurfels, scratch);
         if (n == 0 || surfels.empty()) return normalError;
-        const SurfelSurface surface = BlendedSurfaceOf(surfels, metric_);
+        const SurfelSurface surface = WholeSurface(surfels);
         const int block = std::min(n, kNormalErrorBlock);
         std::vector<double> distance(static_cast<size_t>(block));
         std::vector<float> reach(static_cast<size_t>(block));
@@ -253,17 +319,20 @@ public:
 
     /// The surfels (clusters) of `current` facing point i's side among the k nearest to the last
     /// step of its projection (the ones blended there), nearest first (ties by index).
-    std::vector<int> BlendedAt(int i, const std::vector<Surfel> &current) const
+    std::vector<int> BlendedAt(int i, const std::vector<Surfel> &currentClusters) const
     {
         std::vector<int> local;
+        std::vector<Surfel> scratch;
+        const std::vector<Surfel> &current = Blended(currentClusters, scratch);
         const SurfelSurface surface = LocalSurface(current, changedSinceReset_, {i}, local);
-        SurfelSurface::Scratch scratch;
+        SurfelSurface::Scratch projection;
         const vcg::Point3d q = vcg::Point3d::Construct(points_[i]);
-        surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, scratch);
+        surface.Project(q, vcg::Point3d::Construct(normals_[i]), metric_.maxIterations, tolerance_, projection);
         std::vector<std::pair<float, int>> nearest;
-        for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
-            const int c = local[size_t(scratch.queue.getIndex(j))];
-            if (current[c].normal.dot(normals_[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
+        for (int j = 0; j < projection.queue.getNofElements(); ++j) {
+            const int c = local[size_t(projection.queue.getIndex(j))];
+            if (c >= Offset() && current[c].normal.dot(normals_[i]) > 0)
+                nearest.push_back({projection.queue.getWeight(j), c - Offset()});
         }
         std::sort(nearest.begin(), nearest.end());
         std::vector<int> blended;
@@ -272,6 +341,54 @@ public:
     }
 
 private:
+    /// Index in the blended set of a cluster's surfel (FixedSurround).
+    int Offset() const { return surround_ ? int(surround_->surfels.size()) : 0; }
+
+    /// Whether entry b of the blended set is a surfel the surround hides.
+    bool Hidden(size_t b) const
+    {
+        if (!surround_ || b < surround_->surfels.size()) return false;
+        const size_t c = b - surround_->surfels.size();
+        return c < surround_->hidden.size() && surround_->hidden[c] != 0;
+    }
+
+    /// The blended set for the clusters' `surfels`: the surround's first, copied into `scratch`;
+    /// without a surround `surfels` themselves.
+    const std::vector<Surfel> &Blended(const std::vector<Surfel> &surfels, std::vector<Surfel> &scratch) const
+    {
+        if (!surround_) return surfels;
+        scratch = surround_->surfels;
+        scratch.insert(scratch.end(), surfels.begin(), surfels.end());
+        return scratch;
+    }
+
+    /// The entries of the blended set `surfels` that blend (empty without a surround: all of them).
+    std::vector<int> Visible(const std::vector<Surfel> &surfels) const
+    {
+        std::vector<int> visible;
+        if (!surround_) return visible;
+        for (size_t b = 0; b < surfels.size(); ++b)
+            if (!Hidden(b)) visible.push_back(int(b));
+        return visible;
+    }
+
+    /// The blended surface of every surfel of `surfels` that blends (local: their indices, empty
+    /// for all of them).
+    SurfelSurface WholeSurface(const std::vector<Surfel> &surfels, std::vector<int> *local = nullptr) const
+    {
+        std::vector<int> visible = Visible(surfels);
+        if (!surround_) {
+            if (local) {
+                local->resize(surfels.size());
+                for (int c = 0; c < int(surfels.size()); ++c) (*local)[size_t(c)] = c;
+            }
+            return BlendedSurfaceOf(surfels, metric_);
+        }
+        SurfelSurface surface = BlendedSurfaceOf(surfels, visible.data(), visible.size(), metric_);
+        if (local) local->swap(visible);
+        return surface;
+    }
+
     /// Takes (distance, point) as the worst if it is the first or farther: called in point order,
     /// the first point of the largest distance, the same for any thread count.
     static void KeepWorst(double distance, int point, double &max, int &worst)
@@ -286,11 +403,12 @@ private:
     }
 
     /// The surfels of `surfels` that differ from `current` (`changed`, ascending; extra ones on
-    /// either side count) and their old and new centres (`moved`).
-    static void Changes(const std::vector<Surfel> &current, const std::vector<Surfel> &surfels,
-                        std::vector<vcg::Point3d> &moved, std::vector<int> &changed)
+    /// either side count; hidden ones do not) and their old and new centres (`moved`).
+    void Changes(const std::vector<Surfel> &current, const std::vector<Surfel> &surfels,
+                 std::vector<vcg::Point3d> &moved, std::vector<int> &changed) const
     {
         for (size_t c = 0; c < std::max(surfels.size(), current.size()); ++c) {
+            if (Hidden(c)) continue;
             const bool had = c < current.size(), has = c < surfels.size();
             if (had && has && Same(current[c], surfels[c])) continue;
             if (had) moved.push_back(vcg::Point3d::Construct(current[c].position));
@@ -363,7 +481,7 @@ private:
         if (beyond.empty()) return;
         std::vector<double> distance(beyond.size());
         std::vector<float> reach(beyond.size()), normalError(beyond.size());
-        Project(BlendedSurfaceOf(surfels, metric_), beyondPoint.data(), 0, int(beyond.size()), distance.data(),
+        Project(WholeSurface(surfels), beyondPoint.data(), 0, int(beyond.size()), distance.data(),
                 reach.data(), normalError.data());
         for (size_t b = 0; b < beyond.size(); ++b) {
             m.distance[size_t(beyond[b])] = distance[b];
@@ -402,21 +520,20 @@ private:
             scratch.clear();
             // Widened by the single-precision rounding of the tree's distances.
             measured_->Within(q, radius * (1 + 1e-5) + 1e-5 * q.Norm(), near, scratch);
-            for (unsigned c : near)
-                if (c < surfels.size() && !std::binary_search(fresh.begin(), fresh.end(), int(c))) local.push_back(int(c));
+            for (unsigned t : near) {
+                const int c = measuredIndex_.empty() ? int(t) : measuredIndex_[t];
+                if (c < int(surfels.size()) && !std::binary_search(fresh.begin(), fresh.end(), c)) local.push_back(c);
+            }
         }
         if (!whole) {
             for (int c : fresh)
-                if (c < int(surfels.size())) local.push_back(c);
+                if (c < int(surfels.size()) && !Hidden(size_t(c))) local.push_back(c);
             SortUnique(local);
         }
-        if (whole || local.size() < size_t(metric_.neighborCount)) {
-            local.resize(surfels.size());
-            for (int c = 0; c < int(surfels.size()); ++c) local[size_t(c)] = c;
-            return BlendedSurfaceOf(surfels, metric_);
-        }
+        if (whole || local.size() < size_t(metric_.neighborCount)) return WholeSurface(surfels, &local);
         vcg::Box3d box;
-        for (const Surfel &s : surfels) box.Add(vcg::Point3d::Construct(s.position));
+        for (size_t c = 0; c < surfels.size(); ++c)
+            if (!Hidden(c)) box.Add(vcg::Point3d::Construct(surfels[c].position));
         return BlendedSurfaceOf(surfels, local.data(), local.size(), metric_,
                                 SmallestSurfelSize(box));
     }
@@ -446,11 +563,13 @@ private:
 
     const PointArray &points_, &normals_;
     const std::vector<char> *counted_; // null: every point counts
+    const FixedSurround *surround_;    // null: none
     const BlendParams metric_;
     double tolerance_;
     std::vector<double> distance_;
     std::vector<float> reach_; // 4 bytes a point: at 20 million points the exchange's largest array
     std::unique_ptr<CenterTree> measured_;    // centres of the set Reset measured
+    std::vector<int> measuredIndex_;          // ... blended-set index of each (empty: the same)
     std::vector<int> changedSinceReset_;                // surfels of the current set not as measured_ has them
     double max_ = 0;
     int worst_ = -1;
@@ -721,6 +840,7 @@ struct ExchangeState
     int count;                   ///< clusters.clusterCount between trials
     double rounding;             ///< a largest distance lower by less than this is the same
     double invH2;                ///< 1 / weightWidth^2, for SplitMembers
+    bool besideSurround;         ///< `distances` measure beside param.surround: a split keeps both halves
 };
 
 /// The merges tried with the split of cluster c into firstHalf and secondHalf (ascending; the
@@ -805,6 +925,11 @@ bool ExchangeRound(ExchangeState &x, GoOn &goOn)
         std::vector<int> firstHalf(part.data(), mid), secondHalf(mid, part.data() + part.size());
         std::sort(firstHalf.begin(), firstHalf.end());
         std::sort(secondHalf.begin(), secondHalf.end());
+        // Beside a surround, a half the run would not keep would leave its points to no surfel.
+        const FixedSurround &surround = x.param.surround;
+        if (x.besideSurround &&
+            !(surround.Kept(firstHalf, x.param.counted) && surround.Kept(secondHalf, x.param.counted)))
+            continue;
         kept = TrySplit(x, members, c, firstHalf, secondHalf, goOn);
     }
     return kept;
@@ -875,7 +1000,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     // order (a trial's surface holds the surfels near the points it projects) differ in the last bits.
     detail::ExchangeState state{points,  normals, param,   maker,  clusters,          distances,
                                 pairs,   current, trial,   settled, result,           count,
-                                1e-9 * diagonal, 1.0 / (weightWidth * weightWidth)};
+                                1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), false};
     for (; round < param.maxRounds && !pairs.Empty() && distances.Max() > 0 && !result.cancelled; ++round) {
         if (!detail::ExchangeRound(state, goOn)) break;
         ++result.exchanges;
@@ -885,6 +1010,26 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
         result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials,
                                                      result.creaseFitEntry, goOn);
     result.maxAfter = distances.Max();
+    if (param.surround.Given() && !result.cancelled && goOn()) {
+        // The seam rounds: the points measured beside the surround, lowered while an exchange
+        // does so, down to what the rounds above reached without it.
+        // The clusters the run does not keep, as the rounds above left them, are hidden; the
+        // seam rounds keep them (a split keeps both halves, a merge takes clusters of counted points).
+        FixedSurround surround = param.surround;
+        surround.HideClustersNotKept(clusters, param.counted);
+        BlendedDistances beside(points, normals, diagonal, &param.counted, &surround);
+        if (beside.Reset(current.fitted, goOn)) {
+            detail::ExchangeState seam{points,  normals, param,   maker,  clusters,          beside,
+                                       pairs,   current, trial,   settled, result,           count,
+                                       1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), true};
+            result.seamMaxBefore = beside.Max();
+            for (int r = 0; r < param.maxRounds && !pairs.Empty() && beside.Max() > result.maxAfter && !result.cancelled; ++r) {
+                if (!detail::ExchangeRound(seam, goOn)) break;
+                ++result.seamExchanges;
+            }
+            result.seamMaxAfter = beside.Max();
+        }
+    }
     surfels = std::move(current.fitted);
     return result;
 }
