@@ -34,6 +34,39 @@ double Diagonal(const gstest::PointSet &s)
 
 vcg::gaussphere::SurfelSurface SurfaceOf(const std::vector<Surfel> &surfels) { return BlendedSurfaceOf(surfels); }
 
+/// The cube's surface sampled 20 a side, jittered: on a regular grid surfel centres tie for the
+/// k-th nearest, and which of them a tree returns is arbitrary (max_error_exchange.h).
+gstest::PointSet JitteredCube(unsigned seed)
+{
+    gstest::PointSet cube = gstest::CubeSurface(20, true);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
+    for (P3 &p : cube.points) p += P3(jitter(rng), jitter(rng), jitter(rng));
+    return cube;
+}
+
+/// What BlendedDistances::BlendedAt gives at point i of `s`, from the surface of all of `surfels`:
+/// those blended at the last step of the point's projection that face it, nearest first, by
+/// their `number` (-1: left out, counted in `leftOut`).
+std::vector<int> BlendedOnTheWholeSurface(const std::vector<Surfel> &surfels, const std::vector<int> &number,
+                                          const gstest::PointSet &s, int i, double diagonal, int &leftOut)
+{
+    const vcg::gaussphere::metric::SurfelErrorParams metric;
+    vcg::gaussphere::SurfelSurface::Scratch scratch;
+    BlendedSurfaceOf(surfels).Project(vcg::Point3d::Construct(s.points[i]), vcg::Point3d::Construct(s.normals[i]),
+                                      metric.maxIterations, metric.convergenceTolerance * diagonal, scratch);
+    std::vector<std::pair<float, int>> nearest;
+    for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
+        const int b = scratch.queue.getIndex(j);
+        if (number[size_t(b)] < 0) ++leftOut;
+        else if (surfels[size_t(b)].normal.dot(s.normals[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), number[size_t(b)]});
+    }
+    std::sort(nearest.begin(), nearest.end());
+    std::vector<int> blended;
+    for (const auto &e : nearest) blended.push_back(e.second);
+    return blended;
+}
+
 } // namespace
 
 // A projection's reach bounds the surfels it used: a surfel added beyond it changes nothing (up to
@@ -78,15 +111,10 @@ TEST(MaxErrorExchange, ProjectionReachBoundsTheSurfelsUsed)
 
 // Measuring a changed set only where its changes reach gives, point by point, the distances of
 // measuring it everywhere (up to rounding: a rebuilt tree sums the same weights in another
-// order; the changes themselves move distances by up to 1e-2 x diagonal). The cube is jittered:
-// on a regular grid, surfel centres tie for the k-th nearest, and which of them a rebuilt tree
-// returns is arbitrary (max_error_exchange.h).
+// order; the changes themselves move distances by up to 1e-2 x diagonal).
 TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
 {
-    gstest::PointSet cube = gstest::CubeSurface(20, true);
-    std::mt19937 jitterRng(3);
-    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
-    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
+    const gstest::PointSet cube = JitteredCube(3);
     const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
     const double diagonal = Diagonal(cube);
     BlendedDistances local(cube.points, cube.normals, diagonal);
@@ -120,22 +148,12 @@ TEST(MaxErrorExchange, LocalMeasureEqualsFullMeasure)
         EXPECT_NEAR(local.Max(), full.Max(), 1e-9 * diagonal);
         // The surfels blended at a point, read off a surface of the surfels near it, are those
         // of the whole set's surface (facing the point, nearest first).
-        const vcg::gaussphere::SurfelSurface whole = BlendedSurfaceOf(changed);
-        vcg::gaussphere::SurfelSurface::Scratch scratch;
-        for (int i = 0; i < cube.Size(); i += 97) {
-            whole.Project(vcg::Point3d::Construct(cube.points[i]), vcg::Point3d::Construct(cube.normals[i]),
-                          vcg::gaussphere::metric::SurfelErrorParams().maxIterations,
-                          vcg::gaussphere::metric::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
-            std::vector<std::pair<float, int>> nearest;
-            for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
-                const int c = scratch.queue.getIndex(j);
-                if (changed[c].normal.dot(cube.normals[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), c});
-            }
-            std::sort(nearest.begin(), nearest.end());
-            std::vector<int> expected;
-            for (const auto &e : nearest) expected.push_back(e.second);
-            EXPECT_EQ(local.BlendedAt(i, changed), expected) << "round " << round << " point " << i;
-        }
+        std::vector<int> number(changed.size());
+        for (size_t c = 0; c < changed.size(); ++c) number[c] = int(c);
+        int leftOut = 0;
+        for (int i = 0; i < cube.Size(); i += 97)
+            EXPECT_EQ(local.BlendedAt(i, changed), BlendedOnTheWholeSurface(changed, number, cube, i, diagonal, leftOut))
+                << "round " << round << " point " << i;
     }
 }
 
@@ -252,10 +270,7 @@ TEST(MaxErrorExchange, OnlyThePointsThatCountSetTheLargestDistance)
 // the clusters' numbering, hidden ones and the surround's left out.
 TEST(MaxErrorExchange, ASurroundStandsInForTheClustersItHides)
 {
-    gstest::PointSet cube = gstest::CubeSurface(20, true);
-    std::mt19937 jitterRng(5);
-    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
-    for (P3 &p : cube.points) p += P3(jitter(jitterRng), jitter(jitterRng), jitter(jitterRng));
+    const gstest::PointSet cube = JitteredCube(5);
     const ResamplingResult r = gstest::Resample(cube, AtTarget(200, 0));
     const double diagonal = Diagonal(cube);
     FixedSurround surround;
@@ -293,24 +308,10 @@ TEST(MaxErrorExchange, ASurroundStandsInForTheClustersItHides)
             blended.push_back(changed[c]);
             cluster.push_back(int(c));
         }
-    const vcg::gaussphere::SurfelSurface whole = BlendedSurfaceOf(blended);
-    vcg::gaussphere::SurfelSurface::Scratch scratch;
     int surroundSeen = 0;
-    for (int i = 0; i < cube.Size(); i += 41) {
-        whole.Project(vcg::Point3d::Construct(cube.points[i]), vcg::Point3d::Construct(cube.normals[i]),
-                      vcg::gaussphere::metric::SurfelErrorParams().maxIterations,
-                      vcg::gaussphere::metric::SurfelErrorParams().convergenceTolerance * diagonal, scratch);
-        std::vector<std::pair<float, int>> nearest;
-        for (int j = 0; j < scratch.queue.getNofElements(); ++j) {
-            const int b = scratch.queue.getIndex(j);
-            if (cluster[size_t(b)] < 0) ++surroundSeen;
-            else if (blended[size_t(b)].normal.dot(cube.normals[i]) > 0) nearest.push_back({scratch.queue.getWeight(j), cluster[size_t(b)]});
-        }
-        std::sort(nearest.begin(), nearest.end());
-        std::vector<int> expected;
-        for (const auto &e : nearest) expected.push_back(e.second);
-        EXPECT_EQ(beside.BlendedAt(i, changed), expected) << "point " << i;
-    }
+    for (int i = 0; i < cube.Size(); i += 41)
+        EXPECT_EQ(beside.BlendedAt(i, changed), BlendedOnTheWholeSurface(blended, cluster, cube, i, diagonal, surroundSeen))
+            << "point " << i;
     EXPECT_GT(surroundSeen, 0) << "the surround's surfels are blended at the points sampled";
 
     // Hidden and not replaced: a third of the surface is gone, the points there measure otherwise.
