@@ -828,6 +828,21 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
         EXPECT_EQ(round.rerun.size(), manifest.tiles.size()) << "every tile runs again with its neighbours' snapshots";
         for (const TileEntry &t : manifest.tiles)
             EXPECT_TRUE(std::ifstream(TilePath(dir, t.id, ".seam"))) << "tile " << t.id << "'s snapshot";
+        // Each tile's seam rounds lower its points to the largest the other tiles' rounds reached.
+        Shares atSeam;
+        ASSERT_TRUE(ReadShares(dir, atSeam, error)) << error;
+        std::vector<double> reached;
+        for (const TileShare &share : atSeam.tiles) {
+            TileOutcome outcome;
+            ASSERT_TRUE(ReadOutcome(dir, share.id, outcome, error)) << error;
+            reached.push_back(outcome.maxima.empty() ? 0.0 : outcome.maxima.back());
+        }
+        for (std::size_t t = 0; t < atSeam.tiles.size(); ++t) {
+            double others = 0;
+            for (std::size_t o = 0; o < reached.size(); ++o)
+                if (o != t) others = std::max(others, reached[o]);
+            EXPECT_EQ(atSeam.tiles[t].seamTarget, others) << "tile " << atSeam.tiles[t].id;
+        }
     }
     EXPECT_GT(seamRound, 1u) << "after the rounds of exchanges and the crease fit limits are shared";
     EXPECT_LE(rounds, 2 * kAdjustRounds + 3) << "a tile's new counts, their nearest, a run for its rounds, the seam "

@@ -295,6 +295,7 @@ bool WriteShareList(const std::string &dir, const Shares &shares, std::string &e
         json tried = json::array();
         for (const TileTrial &t : s.tried) tried.push_back({t.target, t.owned});
         list.push_back({{"id", s.id}, {"owned", s.owned}, {"target", s.target}, {"rounds", s.rounds}, {"tried", tried}});
+        if (s.seamTarget > 0) list.back()["seam_target"] = s.seamTarget;
     }
     json j = {{"target", shares.target}, {"level", shares.level}, {"tiles", list}};
     if (shares.creaseFitLimits.given) j["crease_fit_limits"] = LimitsJson(shares.creaseFitLimits);
@@ -333,6 +334,8 @@ bool ReadShares(const std::string &dir, Shares &shares, std::string &error)
             share.target = t.at("target").get<std::uint64_t>();
             share.rounds = t.at("rounds").get<int>();
             if (share.rounds < -1) throw std::runtime_error("a tile's rounds of exchanges are out of range");
+            share.seamTarget = t.value("seam_target", 0.0);
+            if (!(share.seamTarget >= 0)) throw std::runtime_error("a tile's seam target is negative");
             for (const json &trial : t.value("tried", json::array()))
                 share.tried.push_back({trial.at(0).get<std::uint64_t>(), trial.at(1).get<std::uint64_t>()});
             shares.tiles.push_back(share);
@@ -560,10 +563,16 @@ bool AdjustShares(const std::string &dir, const Manifest &manifest, AdjustFigure
         if (!SnapshotForSeam(dir, manifest, error)) return false;
         all.seam = figures.seamTaken = true;
         // What a count kept before the seam step is no guide after it: the border points the
-        // merge rescues move with the surfels (border_points.h).
-        for (TileShare &share : shares) {
-            share.tried.clear();
-            figures.rerun.push_back(share.id);
+        // merge rescues move with the surfels (border_points.h). A tile's seam rounds lower its
+        // points to the largest the other tiles' rounds reached: the scan's largest after the
+        // rounds, and below it for the tile that holds it.
+        for (std::size_t s = 0; s < shares.size(); ++s) {
+            shares[s].tried.clear();
+            shares[s].seamTarget = 0;
+            for (std::size_t o = 0; o < shares.size(); ++o)
+                if (o != s && !outcomes[o].maxima.empty())
+                    shares[s].seamTarget = std::max(shares[s].seamTarget, outcomes[o].maxima.back());
+            figures.rerun.push_back(shares[s].id);
         }
     }
     return WriteShareList(dir, all, error);

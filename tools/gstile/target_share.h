@@ -124,6 +124,9 @@ struct TileShare
                               ///< (less when the tiles have fewer clusters to split)
     std::uint64_t target = 0; ///< the count its run resamples to, halo included (0: it keeps nothing)
     std::vector<TileTrial> tried; ///< the runs adjusted from, in the order run
+    /// From the seam step on (seam.h): the largest distance its seam rounds lower to, model units,
+    /// the largest the other tiles' rounds reached (0: its own).
+    double seamTarget = 0;
 };
 
 /// The shares, once the probes hold all they need: the level every tile runs at and each tile's share.

@@ -341,6 +341,7 @@ bool RunTile(const std::string &dir, const Manifest &manifest, int id, TileRunFi
         param.reportHighestAtCreaseFit = int(std::min<std::size_t>(HighestToReport(manifest.points), entry->corePoints));
         // After the seam step, its neighbours' kept surfels beyond its faces (seam.h).
         param.surroundingSurfels = std::move(surround);
+        param.seamTarget = share.seamTarget;
     };
     if (run && !ResampleTile(dir, manifest, *entry, adapt, tile, error)) {
         error = name + ": " + error;

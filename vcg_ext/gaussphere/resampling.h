@@ -496,6 +496,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     exchangeParam.creaseFitLimits.distance *= run.scale;
     exchangeParam.reportHighest = run.param.reportHighestAtCreaseFit;
     if (!run.param.surroundingSurfels.empty()) exchangeParam.surround = Surround(run);
+    exchangeParam.seamTarget = run.param.seamTarget * run.scale;
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
         [&run](int round) {

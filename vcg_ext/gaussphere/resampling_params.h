@@ -101,8 +101,11 @@ struct ResamplingParams
     /// in model units (a tile's neighbours' beyond its faces). After the crease fit, seam rounds of
     /// exchanges measure every point on them in place of the clusters this run does not keep (those
     /// whose anchor, the member of smallest anchorKeys entry, is not counted) and lower the largest
-    /// distance so measured towards the one the run reached without them. Not a user's parameter.
+    /// distance so measured down to seamTarget. Not a user's parameter.
     std::vector<Surfel> surroundingSurfels;
+    /// ... the largest distance the seam rounds lower to, in model units (0: the one this run
+    /// reached without them). A tile takes the largest the other tiles reached. Not a user's parameter.
+    double seamTarget = 0;
     /// ... per vertex (empty: the vertex index). A tile of a tiled run gives its points' input
     /// indices, as its ownership rule reads them (tools/gstile). Not a user's parameter.
     std::vector<std::uint64_t> anchorKeys;
@@ -291,6 +294,7 @@ inline std::string ResamplingParams::Validate() const
         return "creaseFitLimits must not be negative";
     if (!surroundingSurfels.empty() && countedVertices == 0)
         return "surroundingSurfels stand beside the counted vertices: countedVertices must be given";
+    if (!(seamTarget >= 0)) return "seamTarget must not be negative";
     return tuning.Validate();
 }
 

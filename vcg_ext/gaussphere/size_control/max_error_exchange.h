@@ -36,7 +36,7 @@
 // A tile given the surfels its neighbours keep (FixedSurround: its seam step, tools/gstile/seam.h)
 // then makes seam rounds: every point measured on those in place of the clusters the tile does not
 // keep, exchanges (a split only into halves the tile keeps) while one lowers the largest distance
-// so measured, down to the one it reached on its own clusters.
+// so measured, down to the largest the other tiles reached on their own clusters.
 //
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
@@ -144,8 +144,9 @@ struct MaxErrorExchangeParams
     /// Surfels kept elsewhere around the points, blended in place of the clusters it hides
     /// (FixedSurround). Given, the seam rounds follow the crease fit: exchanges measured beside it
     /// (a split keeps both halves, FixedSurround::Kept), while one lowers the largest distance so
-    /// measured and it lies above maxAfter, at most maxRounds.
+    /// measured and it lies above seamTarget, at most maxRounds.
     FixedSurround surround;
+    double seamTarget = 0; ///< ... (0: the largest distance after the crease fit, maxAfter)
 };
 
 /// How far a point that does not count may rise, as a share of the largest distance. A tile
@@ -1012,7 +1013,7 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     result.maxAfter = distances.Max();
     if (param.surround.Given() && !result.cancelled && goOn()) {
         // The seam rounds: the points measured beside the surround, lowered while an exchange
-        // does so, down to what the rounds above reached without it.
+        // does so, down to the target.
         // The clusters the run does not keep, as the rounds above left them, are hidden; the
         // seam rounds keep them (a split keeps both halves, a merge takes clusters of counted points).
         FixedSurround surround = param.surround;
@@ -1023,7 +1024,8 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                                        pairs,   current, trial,   settled, result,           count,
                                        1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), true};
             result.seamMaxBefore = beside.Max();
-            for (int r = 0; r < param.maxRounds && !pairs.Empty() && beside.Max() > result.maxAfter && !result.cancelled; ++r) {
+            const double target = param.seamTarget > 0 ? param.seamTarget : result.maxAfter;
+            for (int r = 0; r < param.maxRounds && !pairs.Empty() && beside.Max() > target && !result.cancelled; ++r) {
                 if (!detail::ExchangeRound(seam, goOn)) break;
                 ++result.seamExchanges;
             }
