@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -391,6 +392,56 @@ TEST(MaxErrorExchange, TheSeamRoundsKeepWhatTheRunKeeps)
     ResamplingParams wrongKeys = param;
     wrongKeys.anchorKeys.assign(3, 0);
     EXPECT_THROW(gstest::Resample(cube, wrongKeys), std::invalid_argument);
+}
+
+// The seam rounds measure every point, the uncounted ones too, and pass over one that no exchange
+// of the run lowers: it stops counting, and may not rise. A run whose share of the rounds is 0
+// takes them all the same.
+TEST(MaxErrorExchange, TheSeamRoundsPassOverAPointTheRunCannotLower)
+{
+    const gstest::PointSet cube = gstest::CubeSurface(24, true);
+    const int counted = cube.Size() / 2;
+    ResamplingParams alone = AtTarget(150, 16);
+    alone.countedVertices = counted;
+    alone.exchangeRounds = 0;
+    const ResamplingResult other = gstest::Resample(cube, AtTarget(120, 0));
+    std::vector<char> beyond(other.surfels.size(), 0);
+    for (int i = counted; i < cube.Size(); ++i) beyond[size_t(other.representative[size_t(i)])] = 1;
+    ResamplingParams param = alone;
+    for (size_t c = 0; c < other.surfels.size(); ++c)
+        if (beyond[c]) param.surroundingSurfels.push_back(other.surfels[c]);
+    // As low as the rounds go, then down to where they went.
+    param.seamTarget = 1e-6 * Diagonal(cube);
+    const double reached = gstest::Resample(cube, param).stats.seamMaxAfter;
+    param.seamTarget = 1.001 * reached * Diagonal(cube);
+    const ResamplingResult mended = gstest::Resample(cube, param);
+    EXPECT_EQ(mended.stats.exchangesForMaxError, 0);
+    EXPECT_GT(mended.stats.seamExchanges, 0);
+    EXPECT_LT(mended.stats.seamMaxAfter, mended.stats.seamMaxBefore);
+    EXPECT_LE(mended.stats.seamMaxAfter, 1.001 * reached);
+
+    // The surround's surfel farthest from the counted points, lifted off the surface: the points
+    // beside it lie the highest, and only the surround blends there.
+    size_t farthest = 0;
+    double farthestDistance = -1;
+    for (size_t s = 0; s < param.surroundingSurfels.size(); ++s) {
+        double nearest = std::numeric_limits<double>::max();
+        for (int i = 0; i < counted; ++i)
+            nearest = std::min(nearest, double((cube.points[size_t(i)] - param.surroundingSurfels[s].position).Norm()));
+        if (nearest > farthestDistance) farthest = s, farthestDistance = nearest;
+    }
+    Surfel &lifted = param.surroundingSurfels[farthest];
+    lifted.position += lifted.normal * (0.2f * float(Diagonal(cube)));
+    const ResamplingResult r = gstest::Resample(cube, param);
+    gstest::ExpectValidResult(r, cube);
+    EXPECT_EQ(int(r.surfels.size()), 150);
+    EXPECT_GT(r.stats.seamSetAside, mended.stats.seamSetAside) << "the points beside the lifted surfel";
+    EXPECT_EQ(r.stats.seamExchanges, mended.stats.seamExchanges) << "the rounds go on past them";
+    EXPECT_EQ(r.representative, mended.representative);
+
+    const ResamplingResult without = gstest::Resample(cube, alone);
+    EXPECT_EQ(without.stats.seamExchanges, 0);
+    EXPECT_EQ(without.stats.seamSetAside, 0);
 }
 
 TEST(MaxErrorExchange, IdenticalOutputForOneAndTwoThreads)

@@ -386,9 +386,10 @@ std::string FiguresLine(const TileRunFigures &f, std::size_t position, std::size
                   f.owned, (unsigned long long)f.ownedMembers, f.stats.levelUsed, f.seconds);
     if (f.seam && length > 0 && length < int(sizeof line))
         std::snprintf(line + length, sizeof line - std::size_t(length),
-                      "; beside its neighbours' surfels: largest distance %.4g -> %.4g (model units), %d exchanges",
+                      "; beside its neighbours' surfels: largest distance %.4g -> %.4g (model units), %d exchanges, "
+                      "%d points set aside",
                       f.stats.seamMaxBefore * f.stats.diagonal, f.stats.seamMaxAfter * f.stats.diagonal,
-                      f.stats.seamExchanges);
+                      f.stats.seamExchanges, f.stats.seamSetAside);
     return line;
 }
 

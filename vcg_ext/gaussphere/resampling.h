@@ -105,9 +105,11 @@ struct ResamplingStats
     int creaseFitsForMaxError = 0; ///< ... surfels at creases fitted by their last step (max_error_exchange.h)
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
-    /// Seam rounds beside ResamplingParams::surroundingSurfels: exchanges kept, the largest
-    /// distance measured there before and after them, over `diagonal`
+    /// Seam rounds beside ResamplingParams::surroundingSurfels: exchanges kept, points set aside
+    /// (no exchange of the run lowered them), the largest distance of the points that count
+    /// measured there before and after them, over `diagonal`
     int seamExchanges = 0;
+    int seamSetAside = 0;
     double seamMaxBefore = 0, seamMaxAfter = 0;
     int threadsUsed = 0;           ///< OpenMP threads the run could take (the host's setting)
     double meanAdaptiveNeighbors = 0;
@@ -497,6 +499,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     exchangeParam.reportHighest = run.param.reportHighestAtCreaseFit;
     if (!run.param.surroundingSurfels.empty()) exchangeParam.surround = Surround(run);
     exchangeParam.seamTarget = run.param.seamTarget * run.scale;
+    exchangeParam.seamRounds = run.param.maxErrorExchanges;
     const MaxErrorExchangeResult exchange = ExchangeForMaxError(
         run.points, run.normals, run.graph, run.weightWidth, run.diagonal, exchangeParam, run.clusters, maker, surfels,
         [&run](int round) {
@@ -508,6 +511,7 @@ inline void ExchangeClusters(Run &run, const SurfelMaker &maker, std::vector<std
     ResamplingStats &stats = run.stats;
     stats.exchangesForMaxError = exchange.exchanges;
     stats.seamExchanges = exchange.seamExchanges;
+    stats.seamSetAside = exchange.seamSetAside;
     stats.seamMaxBefore = run.diagonal > 0 ? exchange.seamMaxBefore / run.diagonal : 0.0;
     stats.seamMaxAfter = run.diagonal > 0 ? exchange.seamMaxAfter / run.diagonal : 0.0;
     stats.exchangeTrials = exchange.trials;

@@ -101,7 +101,8 @@ struct ResamplingParams
     /// in model units (a tile's neighbours' beyond its faces). After the crease fit, seam rounds of
     /// exchanges measure every point on them in place of the clusters this run does not keep (those
     /// whose anchor, the member of smallest anchorKeys entry, is not counted) and lower the largest
-    /// distance so measured down to seamTarget. Not a user's parameter.
+    /// distance of any point so measured, counted or not, down to seamTarget, passing over a point
+    /// no exchange of this run lowers. Not a user's parameter.
     std::vector<Surfel> surroundingSurfels;
     /// ... the largest distance the seam rounds lower to, in model units (0: the one this run
     /// reached without them). A tile takes the largest the other tiles reached. Not a user's parameter.

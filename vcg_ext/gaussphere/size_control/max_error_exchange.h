@@ -143,10 +143,13 @@ struct MaxErrorExchangeParams
     MergeSpread mergeSpread = MergeSpread::Ward; ///< the merges' cost (MergeCostModel), as the clusters were merged
     /// Surfels kept elsewhere around the points, blended in place of the clusters it hides
     /// (FixedSurround). Given, the seam rounds follow the crease fit: exchanges measured beside it
-    /// (a split keeps both halves, FixedSurround::Kept), while one lowers the largest distance so
-    /// measured and it lies above seamTarget, at most maxRounds.
+    /// at every point (a split keeps both halves, FixedSurround::Kept), while the largest distance
+    /// so measured lies above seamTarget; a point no exchange lowers is set aside.
     FixedSurround surround;
     double seamTarget = 0; ///< ... (0: the largest distance after the crease fit, maxAfter)
+    /// ... at most this many exchanges kept, and points set aside, whatever maxRounds is: a tile
+    /// whose share of the rounds is 0 mends its border too.
+    int seamRounds = 16;
 };
 
 /// How far a point that does not count may rise, as a share of the largest distance. A tile
@@ -169,8 +172,10 @@ struct MaxErrorExchangeResult
     double maxAfter = 0;    ///< ... and after
     std::vector<double> maxima; ///< maxBefore, then the largest distance after each kept exchange
     /// With MaxErrorExchangeParams::surround, the seam rounds after the crease fit: exchanges kept,
-    /// the largest distance measured beside the surround before and after them.
+    /// points set aside (no exchange lowered them), and the largest distance of the points that
+    /// count measured beside the surround before and after them.
     int seamExchanges = 0;
+    int seamSetAside = 0;
     double seamMaxBefore = 0, seamMaxAfter = 0;
     CreaseFitEntry creaseFitEntry; ///< with MaxErrorExchangeParams::reportHighest (empty if no point counts)
     bool cancelled = false; ///< progress returned false
@@ -317,6 +322,14 @@ public:
     bool Counts(int i) const { return counted_ == nullptr || (*counted_)[size_t(i)] != 0; }
     double Max() const { return max_; }
     int Worst() const { return worst_; }
+    /// Max() and Worst() again, after the caller changed the flags of the points that count.
+    void Recount()
+    {
+        max_ = 0;
+        worst_ = -1;
+        for (int i = 0; i < int(distance_.size()); ++i)
+            if (Counts(i)) KeepWorst(distance_[i], i, max_, worst_);
+    }
 
     /// The surfels (clusters) of `current` facing point i's side among the k nearest to the last
     /// step of its projection (the ones blended there), nearest first (ties by index).
@@ -613,11 +626,12 @@ private:
 /// read: a split tried with merges reads them in order until mergeCandidates are tried, skipping
 /// the pairs that touch an excluded cluster (the settled ones, 3 per kept exchange; the split
 /// one; the 2 of each merge tried), so no further than mergeCandidates + the pairs of the
-/// 3 maxRounds + 1 + 2 mergeCandidates clusters that have the most. A few thousand of the
+/// 3 (maxRounds + seamRounds) + 1 + 2 mergeCandidates clusters that have the most. A few thousand of the
 /// million pairs at 10 % of 10 million points.
 inline size_t PairsReadAtMost(const std::vector<MergePair> &pairs, int clusterCount, const MaxErrorExchangeParams &param)
 {
-    const long long excludedAtMost = 3LL * param.maxRounds + 1 + 2LL * param.mergeCandidates;
+    const long long rounds = param.maxRounds + (param.surround.Given() ? param.seamRounds : 0);
+    const long long excludedAtMost = 3LL * rounds + 1 + 2LL * param.mergeCandidates;
     if (excludedAtMost >= clusterCount) return pairs.size();
     std::vector<int> pairsOf(size_t(clusterCount), 0);
     for (const MergePair &p : pairs) {
@@ -884,6 +898,15 @@ bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std
     return false;
 }
 
+/// The largest of `distances` at the first n points where `counted` flags them (empty: every one).
+inline double LargestCounted(const BlendedDistances &distances, const std::vector<char> &counted, int n)
+{
+    double largest = 0;
+    for (int i = 0; i < n; ++i)
+        if (counted.empty() || counted[size_t(i)]) largest = std::max(largest, distances.Distance(i));
+    return largest;
+}
+
 /// The split of cluster c into firstHalf and secondHalf (ascending), tried alone, its second half
 /// as an extra cluster: if that does not lower the largest distance, a merge elsewhere is not
 /// tried (it seldom helps where the split did not); if it does, TryMerges. Trials change the
@@ -1012,24 +1035,33 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
                                                      result.creaseFitEntry, goOn);
     result.maxAfter = distances.Max();
     if (param.surround.Given() && !result.cancelled && goOn()) {
-        // The seam rounds: the points measured beside the surround, lowered while an exchange
-        // does so, down to the target.
+        // The seam rounds: the tile's points, its halo's too, measured beside the surround and
+        // lowered while an exchange does so, down to the target. A point no exchange of this run
+        // lowers (its surfels are another tile's) is set aside: it stops counting, so it may not
+        // rise (BlendedDistances::Measure), and the rounds go on with the next.
         // The clusters the run does not keep, as the rounds above left them, are hidden; the
         // seam rounds keep them (a split keeps both halves, a merge takes clusters of counted points).
         FixedSurround surround = param.surround;
         surround.HideClustersNotKept(clusters, param.counted);
-        BlendedDistances beside(points, normals, diagonal, &param.counted, &surround);
+        std::vector<char> seamCounted(points.size(), 1);
+        BlendedDistances beside(points, normals, diagonal, &seamCounted, &surround);
         if (beside.Reset(current.fitted, goOn)) {
             detail::ExchangeState seam{points,  normals, param,   maker,  clusters,          beside,
                                        pairs,   current, trial,   settled, result,           count,
                                        1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), true};
-            result.seamMaxBefore = beside.Max();
+            result.seamMaxBefore = detail::LargestCounted(beside, param.counted, int(points.size()));
             const double target = param.seamTarget > 0 ? param.seamTarget : result.maxAfter;
-            for (int r = 0; r < param.maxRounds && !pairs.Empty() && beside.Max() > target && !result.cancelled; ++r) {
-                if (!detail::ExchangeRound(seam, goOn)) break;
-                ++result.seamExchanges;
+            while (result.seamExchanges < param.seamRounds && result.seamSetAside < param.seamRounds &&
+                   !pairs.Empty() && beside.Max() > target && !result.cancelled) {
+                if (detail::ExchangeRound(seam, goOn)) {
+                    ++result.seamExchanges;
+                } else if (!result.cancelled) {
+                    seamCounted[size_t(beside.Worst())] = 0;
+                    beside.Recount();
+                    ++result.seamSetAside;
+                }
             }
-            result.seamMaxAfter = beside.Max();
+            result.seamMaxAfter = detail::LargestCounted(beside, param.counted, int(points.size()));
         }
     }
     surfels = std::move(current.fitted);
