@@ -451,16 +451,27 @@ def tiling():
                         [signed_percent(float(f[(name, k)])) for k in ("count_diff_pct", "delta_rms_diff_pct", "delta_max_diff_pct",
                                                                   "delta_p999_diff_pct", "l21_own_rms_diff_pct",
                                                                   "l21_blended_rms_diff_pct")] +
+                        [l21_tails(f, name)] +
                         [f"{f[(f'whole_{name}', 'wall_s')]} / {f[(f'tiled_{name}', 'wall_s')]}"])
         parts += [f"### {title}", tile_stamp(stage, stamp),
                   "The dragon (437,645 points) in 13 tiles of at most 150,000 points with their halo, " + text,
                   md_table([stage if stage == "target" else "bound", "surfels tiled", "count", "Δ* RMS", "Δ* max",
-                            "Δ* p99.9", "L2,1 own", "L2,1 blended", "wall s whole / tiled"], rows)]
+                            "Δ* p99.9", "L2,1 own RMS", "L2,1 blended RMS", "L2,1 max, p99.9: own; blended",
+                            "wall s whole / tiled"], rows)]
     if parts:
         parts = ["## Tiled resampling",
                  "`gstile` resamples a scan of any size tile by tile ([docs/tiling.md](tiling.md); the benchmark: "
                  "[bench/tile/README.md](../bench/tile/README.md))."] + parts
     return parts
+
+
+def l21_tails(f, name):
+    """The L2,1 maxima and 99.9th percentiles, own and blended, tiled against whole, in one cell."""
+    keys = [f"l21_{kind}_{figure}_diff_pct" for kind in ("own", "blended") for figure in ("max", "p999")]
+    if any((name, k) not in f for k in keys):
+        return "not measured"
+    cells = [signed_percent(float(f[(name, k)])) for k in keys]
+    return f"{cells[0]}, {cells[1]}; {cells[2]}, {cells[3]}"
 
 
 # ------------------------------------------------------------------------------------------------

@@ -5,7 +5,7 @@
 # e.g. --target N, go to both runs). Checks, from
 # gstile_compare's figures:
 #  - surfel count within 0.5 %; every error figure (RMS, 99.9th percentile) within 1 %, and the
-#    largest distance at most 1 % above the whole run's (a single point, which tiles may meet
+#    largest ones at most 1 % above the whole run's (a single point, which tiles may meet
 #    lower: at a target, the exchanges that lower it are shared out over the tiles);
 #  - the points represented within 0.5 % of the input's (no cluster lost or kept twice beyond a
 #    few at borders);
@@ -33,10 +33,12 @@ check() { # NAME CONDITION (awk, over the figures as variables)
 }
 abs() { echo "(v[\"$1\"] < 0 ? -v[\"$1\"] : v[\"$1\"])"; }
 check "count within 0.5 %" "$(abs count_diff_pct) <= 0.5"
-for figure in delta_rms delta_p999 l21_own_rms l21_blended_rms; do
+for figure in delta_rms delta_p999 l21_own_rms l21_own_p999 l21_blended_rms l21_blended_p999; do
   check "$figure within 1 %" "$(abs ${figure}_diff_pct) <= 1"
 done
-check "delta_max at most 1 % above the whole run's" 'v["delta_max_diff_pct"] <= 1'
+for figure in delta_max l21_own_max l21_blended_max; do
+  check "$figure at most 1 % above the whole run's" "v[\"${figure}_diff_pct\"] <= 1"
+done
 check "represented points within 0.5 %" "$(abs members_diff_pct) <= 0.5"
 check "no doubles across tiles" 'v["tiled_nn_across_median"] >= v["tiled_nn_inside_median"]'
 check "no holes along tile faces" \

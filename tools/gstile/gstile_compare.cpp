@@ -5,8 +5,9 @@
 //
 // Prints key=value lines:
 //  - counts, and the points the surfels represent (the sum of their qualities);
-//  - the error metric of vcg_ext/surfel_error (Δ* RMS and max, L2,1 to the nearest surfel and
-//    to the blended surface, RMS) of both against the input, and their relative differences;
+//  - the error metric of vcg_ext/surfel_error (RMS, max and 99.9th percentile of Δ*, of L2,1 to
+//    the nearest surfel and of L2,1 to the blended surface) of both against the input, and their
+//    relative differences;
 //  - seams, doubles: each surfel's nearest other surfel is "across" when it comes from another
 //    tile (tiled: the tile whose result holds it; whole: the tile whose core holds its centre),
 //    else "inside"; the medians and 5th percentiles of both distances, whose ratio falls far
@@ -208,7 +209,11 @@ int main(int argc, char **argv)
     PrintFigure("delta_max", mw.normalizedDistance.max, mt.normalizedDistance.max);
     PrintFigure("delta_p999", mw.normalizedDistance.p999, mt.normalizedDistance.p999);
     PrintFigure("l21_own_rms", mw.normalToOwnSurfel.rms, mt.normalToOwnSurfel.rms);
+    PrintFigure("l21_own_max", mw.normalToOwnSurfel.max, mt.normalToOwnSurfel.max);
+    PrintFigure("l21_own_p999", mw.normalToOwnSurfel.p999, mt.normalToOwnSurfel.p999);
     PrintFigure("l21_blended_rms", mw.normalToBlended.rms, mt.normalToBlended.rms);
+    PrintFigure("l21_blended_max", mw.normalToBlended.max, mt.normalToBlended.max);
+    PrintFigure("l21_blended_p999", mw.normalToBlended.p999, mt.normalToBlended.p999);
     PrintNearestSpacing("whole", whole);
     PrintNearestSpacing("tiled", tiled);
     PrintBorderHoles("whole", whole, input, manifest, band);
