@@ -308,6 +308,7 @@ def whole_vs_tiled_rows(f, shape):
                      ", ".join(signed_percent(float(f[(c, k)])) for k in
                                ("delta_rms_diff_pct", "delta_max_diff_pct", "l21_own_rms_diff_pct",
                                 "l21_blended_rms_diff_pct")),
+                     largest_tail_difference(f, c),
                      signed_percent(float(f[(c, "members_diff_pct")])),
                      f"{f[(c, 'whole_border_uncovered')]} / {f[(c, 'tiled_border_uncovered')]} of "
                      f"{int(f[(c, 'tiled_border_points')]):,}",
@@ -315,6 +316,16 @@ def whole_vs_tiled_rows(f, shape):
                      f"{f[(whole, 'wall_s')]} / {f[(tiled, 'wall_s')]}",
                      f"{f[(whole, 'peak_mib')]} / {f[(tiled, 'peak_mib')]}"])
     return rows
+
+
+def largest_tail_difference(f, name):
+    """Of the Δ* 99.9th percentile and the L2,1 maxima and 99.9th percentiles, tiled against
+    whole, the difference farthest from 0."""
+    keys = ["delta_p999_diff_pct"] + [f"l21_{kind}_{figure}_diff_pct" for kind in ("own", "blended")
+                                      for figure in ("max", "p999")]
+    if any((name, k) not in f for k in keys):
+        return "not measured"
+    return signed_percent(max((float(f[(name, k)]) for k in keys), key=abs))
 
 
 def rescued_cell(f, name):
@@ -389,8 +400,10 @@ def tiling():
                   + (f" The merge wrote {int(f[('merge', 'surfels')]):,} surfels, {int(f[('merge', 'rescued')]):,} of "
                      f"them kept for {int(f[('merge', 'uncovered')]):,} border points no tile kept nor covered "
                      "(docs/tiling.md, *Border points*)." if ("merge", "surfels") in f else "")]
-    compare_columns = ["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own, "
-                       "L2,1 blended: tiled − whole", "points represented: tiled − whole",
+    compare_columns = ["points", "tiles", "surfels whole / tiled", "Δ* RMS, Δ* max, L2,1 own RMS, "
+                       "L2,1 blended RMS: tiled − whole",
+                       "Δ* p99.9, L2,1 max and p99.9 own and blended: the largest tiled − whole",
+                       "points represented: tiled − whole",
                        "uncovered points along tile faces, whole / tiled",
                        "surfels kept for border points no tile kept nor covered", "wall s whole / tiled",
                        "peak MiB whole / tiled"]
