@@ -35,8 +35,11 @@
 //
 // A tile given the surfels its neighbours keep (FixedSurround: its seam step, tools/gstile/seam.h)
 // then makes seam rounds: every point measured on those in place of the clusters the tile does not
-// keep, exchanges (a split only into halves the tile keeps) while one lowers the largest distance
-// so measured, down to the largest the other tiles reached on their own clusters.
+// keep, exchanges (a split only into halves the tile keeps) that lower the largest distance so
+// measured, down to the largest the other tiles reached on their own clusters. Its halo points
+// count there too: a point beside a face is often lowered only by a change to the clusters of the
+// tile that does not hold it. A point no exchange lowers (the surfels to change are another
+// tile's) is set aside: it stops counting, may not rise, and the rounds go on with the next.
 //
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
