@@ -68,6 +68,26 @@ std::vector<int> BlendedOnTheWholeSurface(const std::vector<Surfel> &surfels, co
     return blended;
 }
 
+/// `param` for the cube whose first `counted` points count, beside a surround: what a run without
+/// exchanges at 120 surfels keeps where the points do not count (coarser than what exchanges make).
+ResamplingParams BesideASurround(const gstest::PointSet &cube, int counted, ResamplingParams param)
+{
+    param.countedVertices = counted;
+    const ResamplingResult other = gstest::Resample(cube, AtTarget(120, 0));
+    std::vector<char> beyond(other.surfels.size(), 0);
+    for (int i = counted; i < cube.Size(); ++i) beyond[size_t(other.representative[size_t(i)])] = 1;
+    for (size_t c = 0; c < other.surfels.size(); ++c)
+        if (beyond[c]) param.surroundingSurfels.push_back(other.surfels[c]);
+    return param;
+}
+
+/// The surfels of `r` the crease fit moved: narrowed at a crease and off their clusters' plane.
+int MovedAtCreases(const ResamplingResult &r)
+{
+    return int(std::count_if(r.surfels.begin(), r.surfels.end(),
+                             [](const Surfel &s) { return s.blendScale < 1 && s.fitOffset != 0; }));
+}
+
 } // namespace
 
 // A projection's reach bounds the surfels it used: a surfel added beyond it changes nothing (up to
@@ -351,21 +371,15 @@ TEST(MaxErrorExchange, ARunKeepsTheClustersWhoseAnchorCounts)
 
 // Surrounding surfels: the rounds before the seam rounds are those of the run without them; the
 // seam rounds keep the count and the number of clusters the run keeps (a split keeps both halves,
-// a merge joins two it keeps), and lower the largest distance measured beside the surround.
+// a merge joins two it keeps), lower the largest distance measured beside the surround, and keep
+// the crease fit's moves but on the clusters they change.
 TEST(MaxErrorExchange, TheSeamRoundsKeepWhatTheRunKeeps)
 {
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     const int counted = cube.Size() / 2;
     ResamplingParams alone = AtTarget(150, 16);
     alone.countedVertices = counted;
-    // The surround: what a run without exchanges keeps where the points do not count, coarser
-    // than what the exchanges make there.
-    const ResamplingResult other = gstest::Resample(cube, AtTarget(120, 0));
-    ResamplingParams param = alone;
-    std::vector<char> beyond(other.surfels.size(), 0);
-    for (int i = counted; i < cube.Size(); ++i) beyond[size_t(other.representative[size_t(i)])] = 1;
-    for (size_t c = 0; c < other.surfels.size(); ++c)
-        if (beyond[c]) param.surroundingSurfels.push_back(other.surfels[c]);
+    const ResamplingParams param = BesideASurround(cube, counted, alone);
     ASSERT_FALSE(param.surroundingSurfels.empty());
 
     const ResamplingResult without = gstest::Resample(cube, alone), r = gstest::Resample(cube, param);
@@ -375,6 +389,9 @@ TEST(MaxErrorExchange, TheSeamRoundsKeepWhatTheRunKeeps)
     EXPECT_EQ(without.stats.seamExchanges, 0);
     EXPECT_GT(r.stats.seamExchanges, 0);
     EXPECT_LT(r.stats.seamMaxAfter, r.stats.seamMaxBefore);
+    ASSERT_GT(r.stats.creaseFitsForMaxError, 0);
+    EXPECT_GE(MovedAtCreases(r), r.stats.creaseFitsForMaxError - 3 * r.stats.seamExchanges)
+        << "an exchange changes three clusters; the surfels refitted around them keep their crease moves";
     // The clusters the run keeps: those whose first vertex (the anchor, without anchorKeys) counts.
     const auto keptCount = [counted](const ResamplingResult &result) {
         std::vector<int> anchor(result.surfels.size(), -1);
@@ -401,15 +418,11 @@ TEST(MaxErrorExchange, TheSeamRoundsPassOverAPointTheRunCannotLower)
 {
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
     const int counted = cube.Size() / 2;
-    ResamplingParams alone = AtTarget(150, 16);
+    // 32 seam rounds: the set-asides beside the lifted surfel below, and as many after them.
+    ResamplingParams alone = AtTarget(150, 32);
     alone.countedVertices = counted;
     alone.exchangeRounds = 0;
-    const ResamplingResult other = gstest::Resample(cube, AtTarget(120, 0));
-    std::vector<char> beyond(other.surfels.size(), 0);
-    for (int i = counted; i < cube.Size(); ++i) beyond[size_t(other.representative[size_t(i)])] = 1;
-    ResamplingParams param = alone;
-    for (size_t c = 0; c < other.surfels.size(); ++c)
-        if (beyond[c]) param.surroundingSurfels.push_back(other.surfels[c]);
+    ResamplingParams param = BesideASurround(cube, counted, alone);
     // As low as the rounds go, then down to where they went.
     param.seamTarget = 1e-6 * Diagonal(cube);
     const double reached = gstest::Resample(cube, param).stats.seamMaxAfter;
@@ -635,7 +648,7 @@ TEST(MaxErrorExchange, LabelChangeUndoes)
     EXPECT_EQ(c.label[0], 2);
 }
 
-// The exchanges' last step fits the surfels the fit leaves at creases where that lowers the sum of
+// The crease fit after the exchanges fits the surfels the fit leaves at creases where that lowers the sum of
 // squared distances without raising the largest distance or the 99.9th percentiles: on a cube at
 // low counts (every surfel merged and beside an edge), undoing its moves gives the metric's
 // figures before it.

@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <set>
 
+#include <io_surfel/surfel_file.h>
 #include <io_surfel/surfel_records_mesh.h>
 #include <tools/gsresample/ply_input.h>
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
@@ -869,6 +871,25 @@ TEST(TiledTarget, TheBunnysTilesMeetATargetSharedAsTheWholeRunSpendsIt)
     EXPECT_NEAR(double(merged.surfels - merged.rescued), 3000.0, 6.0);
     EXPECT_LE(merged.rescued, 30u) << "halos of 24 spacings: few border points no tile keeps nor covers";
     EXPECT_NEAR(double(merged.members), double(manifest.points), 0.005 * manifest.points);
+
+    // A damaged snapshot (a NaN member count in each) stops a tile's run with the file named and
+    // the way to start the target's steps again; the tile's result stays as it was.
+    for (const TileEntry &t : manifest.tiles) {
+        std::vector<surfel_io::SurfelRecord> records;
+        ASSERT_TRUE(surfel_io::readSurfelFile(TilePath(dir, t.id, ".seam"), records, error)) << error;
+        ASSERT_FALSE(records.empty());
+        records[0].quality = std::numeric_limits<float>::quiet_NaN();
+        ASSERT_TRUE(surfel_io::writeSurfelFile(TilePath(dir, t.id, ".seam"), records, error)) << error;
+    }
+    const int firstTile = manifest.tiles.front().id;
+    std::vector<surfel_io::SurfelRecord> before, after;
+    ASSERT_TRUE(surfel_io::readSurfelFile(TilePath(dir, firstTile, ".surfel"), before, error)) << error;
+    error.clear();
+    EXPECT_FALSE(RunTile(dir, manifest, firstTile, figures, error));
+    EXPECT_NE(error.find(".seam: surfel 0 is not one a tile's run writes"), std::string::npos) << error;
+    EXPECT_NE(error.find("run the tiles from gstile share on"), std::string::npos) << error;
+    ASSERT_TRUE(surfel_io::readSurfelFile(TilePath(dir, firstTile, ".surfel"), after, error)) << error;
+    EXPECT_TRUE(before == after) << "the result of the run that stopped is kept";
 }
 
 } // namespace

@@ -4,9 +4,10 @@
 // surfels the neighbouring tile keeps there: its exchanges can lower a point's distance through
 // surfels no tile keeps. Once every tile ran at its share, `gstile adjust` snapshots each tile's
 // kept surfels (`tile_NNNNNN.seam`) and every tile runs once more with its neighbours' snapshots
-// around it (ResamplingParams::surroundingSurfels): its exchanges and crease fit then measure its
-// points on what the merge will hold beside its own surfels. The snapshots are written once and
-// only read after, so the tiles' runs may go in any order, or at once, with the same result.
+// around it (ResamplingParams::surroundingSurfels): after its exchanges and crease fit, seam
+// rounds of exchanges measure its points on the neighbours' snapshots in place of the clusters it
+// does not keep (what the neighbours kept before their own seam rounds). The snapshots are written
+// once and only read after, so the tiles' runs may go in any order, or at once, with the same result.
 #ifndef GSTILE_SEAM_H
 #define GSTILE_SEAM_H
 

@@ -102,7 +102,7 @@ struct ResamplingStats
     double largestFitMove = 0;     ///< ... the longest move, over `diagonal`
     int exchangesForMaxError = 0;  ///< cluster exchanges kept at targetCount (maxErrorExchanges)
     int exchangeTrials = 0;        ///< ... surfel sets measured for them
-    int creaseFitsForMaxError = 0; ///< ... surfels at creases fitted by their last step (max_error_exchange.h)
+    int creaseFitsForMaxError = 0; ///< ... surfels fitted by the crease fit after them (max_error_exchange.h)
     double exchangeMaxBefore = 0, exchangeMaxAfter = 0; ///< ... largest distance to the blended
                                                         ///< surface before and after, over `diagonal`
     /// Seam rounds beside ResamplingParams::surroundingSurfels: exchanges kept, points set aside

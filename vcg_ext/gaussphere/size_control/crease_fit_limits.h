@@ -1,4 +1,4 @@
-// What the exchanges' last step, the crease fit (max_error_exchange.h), judges its trials against.
+// What the crease fit after the exchanges (max_error_exchange.h) judges its trials against.
 //
 // A run judges them against its figures on entry to the fit: its largest distance to the blended
 // surface, and the 99.9th percentiles of that distance and of the blended normal error. A tile of

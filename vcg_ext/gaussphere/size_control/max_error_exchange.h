@@ -40,6 +40,8 @@
 // count there too: a point beside a face is often lowered only by a change to the clusters of the
 // tile that does not hold it. A point no exchange lowers (the surfels to change are another
 // tile's) is set aside: it stops counting, may not rise, and the rounds go on with the next.
+// The surfels refitted around a seam exchange take the crease fit's moves back (the plain fit
+// leaves crease surfels in place), but for the clusters the exchange changes.
 //
 // Cost. A trial measures the distances again only where they can have changed: a projection
 // involves the surfels within its reach of the point (SurfelSurface::Project), so only points
@@ -169,7 +171,7 @@ constexpr int kNormalErrorBlock = 1 << 16;
 struct MaxErrorExchangeResult
 {
     int exchanges = 0;      ///< exchanges kept
-    int creaseFits = 0;     ///< surfels at creases fitted by the last step (creaseFitMinMembers)
+    int creaseFits = 0;     ///< surfels at creases fitted by the crease fit (creaseFitMinMembers)
     int trials = 0;         ///< surfel sets measured (each split, each split with a merge)
     double maxBefore = 0;   ///< largest distance to the blended surface before, model units
     double maxAfter = 0;    ///< ... and after
@@ -736,12 +738,16 @@ inline bool MeasureCreaseFitBaseline(const PointArray &points, const BlendedDist
     return true;
 }
 
-/// ExchangeForMaxError's last step (file header): the surfels of `current` left at creases, fitted
+/// A crease fit's move of one surfel: (cluster, move along its normal).
+using CreaseMove = std::pair<int, float>;
+
+/// ExchangeForMaxError's crease fit (file header): the surfels of `current` left at creases, fitted
 /// where the measure allows it. `distances` has measured current.fitted; a kept fit is accepted
-/// there and swapped into `current`. Counts its measures in `trials`; returns the surfels fitted.
-/// With param.reportHighest, `entry` receives the highest figures on entry (crease_fit_limits.h).
+/// there and swapped into `current`. Counts its measures in `trials`; returns the moves kept
+/// (clusters ascending; empty when none). With param.reportHighest, `entry` receives the highest
+/// figures on entry (crease_fit_limits.h).
 template <class GoOn>
-int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const SurfelMaker &maker,
+std::vector<CreaseMove> FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const SurfelMaker &maker,
                      const MaxErrorExchangeParams &param, BlendedDistances &distances, SurfelMaker::Set &current,
                      int &trials, CreaseFitEntry &entry, GoOn &&goOn)
 {
@@ -750,14 +756,13 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
     // beyond the 99.9th percentiles of the distance and of the blended normal error (their values
     // on entry to this step, or the limits given) may rise, so neither percentile rises.
     const ClusterMembers members(clusters);
-    const std::vector<std::pair<int, float>> moves =
-        maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
-    if ((moves.empty() && param.reportHighest == 0) || !goOn()) return 0;
+    const std::vector<CreaseMove> moves = maker.CreaseMoves(current, clusters, members, param.creaseFitMinMembers);
+    if ((moves.empty() && param.reportHighest == 0) || !goOn()) return {};
     CreaseFitBaseline base;
-    if (!MeasureCreaseFitBaseline(points, distances, current.fitted, param, base, entry) || moves.empty()) return 0;
+    if (!MeasureCreaseFitBaseline(points, distances, current.fitted, param, base, entry) || moves.empty()) return {};
     // All moves at once; where that raises a figure, the moves of the surfels within reach of
     // the points that rose are dropped and the rest tried again, up to creaseFitTrials times.
-    std::vector<std::pair<int, float>> kept = moves;
+    std::vector<CreaseMove> kept = moves;
     std::vector<Surfel> fitted;
     for (int attempt = 0; attempt < param.creaseFitTrials && !kept.empty() && goOn(); ++attempt) {
         fitted = current.fitted;
@@ -788,9 +793,9 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
             dBeyond <= base.distanceBeyond && nBeyond <= base.normalBeyond) {
             distances.Accept(std::move(measure));
             current.fitted.swap(fitted);
-            return int(kept.size());
+            return kept;
         }
-        std::vector<std::pair<int, float>> rest;
+        std::vector<CreaseMove> rest;
         for (const auto &move : kept) {
             const vcg::Point3d c = vcg::Point3d::Construct(fitted[size_t(move.first)].position);
             bool near = false;
@@ -803,7 +808,7 @@ int FitCreaseSurfels(const PointArray &points, const Clustering &clusters, const
         if (rest.size() == kept.size()) break; // nothing to drop: the rise is not local
         kept.swap(rest);
     }
-    return 0;
+    return {};
 }
 
 /// ExchangeForMaxError's merge pairs: every linked pair of `clusters`, cheapest first, as many as
@@ -849,7 +854,7 @@ struct ExchangeState
     const MaxErrorExchangeParams &param;
     const SurfelMaker &maker;
     Clustering &clusters;
-    BlendedDistances &distances; ///< has measured current.fitted
+    BlendedDistances *distances; ///< has measured current.fitted
     CheapestFirst &pairs;
     SurfelMaker::Set &current;   ///< the surfels of `clusters`
     SurfelMaker::Set &trial;     ///< the set every trial fills
@@ -859,7 +864,36 @@ struct ExchangeState
     double rounding;             ///< a largest distance lower by less than this is the same
     double invH2;                ///< 1 / weightWidth^2, for SplitMembers
     bool besideSurround;         ///< `distances` measure beside param.surround: a split keeps both halves
+    /// The crease fit's moves the clusters keep (the seam rounds come after it; nullptr before).
+    std::vector<CreaseMove> *creaseMoves;
 };
+
+/// The surfels x.trial fitted again around a change (SurfelMaker::Update) take the crease fit's
+/// moves back, but for the `changed` clusters: their unfitted surfels are those the moves were
+/// fitted to (a move reads the unfitted surfels only), and the plain fit would leave them at the
+/// crease. Nothing to do before the crease fit.
+inline void KeepCreaseMoves(ExchangeState &x, std::initializer_list<int> changed)
+{
+    if (!x.creaseMoves) return;
+    for (const CreaseMove &move : *x.creaseMoves) {
+        if (std::find(changed.begin(), changed.end(), move.first) != changed.end()) continue;
+        Surfel &surfel = x.trial.fitted[size_t(move.first)];
+        surfel = x.trial.unfitted[size_t(move.first)];
+        MoveSurfel(surfel, move.second);
+    }
+}
+
+/// Drops the crease fit's moves of the `changed` clusters of a kept exchange (their surfels are new).
+inline void DropCreaseMoves(ExchangeState &x, std::initializer_list<int> changed)
+{
+    if (!x.creaseMoves) return;
+    std::vector<CreaseMove> &moves = *x.creaseMoves;
+    moves.erase(std::remove_if(moves.begin(), moves.end(),
+                               [&changed](const CreaseMove &move) {
+                                   return std::find(changed.begin(), changed.end(), move.first) != changed.end();
+                               }),
+                moves.end());
+}
 
 /// The merges tried with the split of cluster c into firstHalf and secondHalf (ascending; the
 /// labels of `x.clusters` as before the split, `members` theirs): the cheapest pairs that touch
@@ -887,10 +921,12 @@ bool TryMerges(ExchangeState &x, const ClusterMembers &members, int c, const std
         for (const int *i = members.begin(gone); i != members.end(gone); ++i) exchange.Set(*i, keep);
         for (int i : secondHalf) exchange.Set(i, gone);
         x.maker.Update(x.current, members, x.clusters, {c, gone, keep}, {firstHalf, secondHalf, merged}, x.trial);
-        BlendedDistances::Measure measure = x.distances.Try(x.current.fitted, x.trial.fitted);
-        if (measure.Largest() < x.distances.Max() - x.rounding) {
+        KeepCreaseMoves(x, {c, gone, keep});
+        BlendedDistances::Measure measure = x.distances->Try(x.current.fitted, x.trial.fitted);
+        if (measure.Largest() < x.distances->Max() - x.rounding) {
             exchange.Keep();
-            x.distances.Accept(std::move(measure));
+            DropCreaseMoves(x, {c, gone, keep});
+            x.distances->Accept(std::move(measure));
             std::swap(x.current, x.trial); // the old set's buffers serve the next trials
             x.settled[c] = x.settled[keep] = x.settled[gone] = 1;
             return true;
@@ -924,7 +960,8 @@ bool TrySplit(ExchangeState &x, const ClusterMembers &members, int c, const std:
     for (int i : secondHalf) split.Set(i, x.count);
     x.clusters.clusterCount = x.count + 1;
     x.maker.Update(x.current, members, x.clusters, {c, x.count}, {firstHalf, secondHalf}, x.trial);
-    const bool splitHelps = x.distances.Try(x.current.fitted, x.trial.fitted).Largest() < x.distances.Max() - x.rounding;
+    KeepCreaseMoves(x, {c, x.count});
+    const bool splitHelps = x.distances->Try(x.current.fitted, x.trial.fitted).Largest() < x.distances->Max() - x.rounding;
     split.Undo();
     if (!splitHelps) return false;
     return TryMerges(x, members, c, firstHalf, secondHalf, goOn);
@@ -937,8 +974,8 @@ template <class GoOn>
 bool ExchangeRound(ExchangeState &x, GoOn &goOn)
 {
     const ClusterMembers members(x.clusters);
-    std::vector<int> candidates{x.clusters.label[x.distances.Worst()]};
-    for (int c : x.distances.BlendedAt(x.distances.Worst(), x.current.fitted))
+    std::vector<int> candidates{x.clusters.label[x.distances->Worst()]};
+    for (int c : x.distances->BlendedAt(x.distances->Worst(), x.current.fitted))
         if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
     bool kept = false;
     int splitsTried = 0;
@@ -948,18 +985,57 @@ bool ExchangeRound(ExchangeState &x, GoOn &goOn)
         std::vector<int> part(members.begin(c), members.end(c));
         int *mid = SplitMembers(x.points, x.normals, part.data(), part.data() + part.size(), x.invH2);
         if (!mid) continue;
-        ++splitsTried;
         std::vector<int> firstHalf(part.data(), mid), secondHalf(mid, part.data() + part.size());
         std::sort(firstHalf.begin(), firstHalf.end());
         std::sort(secondHalf.begin(), secondHalf.end());
-        // Beside a surround, a half the run would not keep would leave its points to no surfel.
+        // Beside a surround, a half the run would not keep would leave its points to no surfel:
+        // such a split is no candidate.
         const FixedSurround &surround = x.param.surround;
         if (x.besideSurround &&
             !(surround.Kept(firstHalf, x.param.counted) && surround.Kept(secondHalf, x.param.counted)))
             continue;
+        ++splitsTried;
         kept = TrySplit(x, members, c, firstHalf, secondHalf, goOn);
     }
     return kept;
+}
+
+/// ExchangeForMaxError's seam rounds (file header), after the crease fit, whose kept moves are
+/// `creaseMoves`: every point, the tile's halo points too, measured beside param.surround and
+/// lowered while an exchange does so, down to param.seamTarget (or the largest distance the run
+/// reached). The clusters the run does not keep, as the rounds before left them, are hidden, and
+/// the seam rounds keep them (a split keeps both halves, a merge takes clusters of counted points).
+/// A point no exchange of the run lowers (its surfels are another tile's) is set aside: it stops
+/// counting, so it may not rise (BlendedDistances::Measure), and the rounds go on with the next.
+/// Exchanges and set-asides are each at most param.seamRounds.
+template <class GoOn>
+void SeamRounds(const ExchangeState &run, std::vector<CreaseMove> &creaseMoves, double diagonal, GoOn &goOn)
+{
+    const MaxErrorExchangeParams &param = run.param;
+    MaxErrorExchangeResult &result = run.result;
+    FixedSurround surround = param.surround;
+    surround.HideClustersNotKept(run.clusters, param.counted);
+    std::vector<char> seamCounted(run.points.size(), 1);
+    BlendedDistances beside(run.points, run.normals, diagonal, &seamCounted, &surround);
+    if (!beside.Reset(run.current.fitted, goOn)) return;
+    ExchangeState seam = run;
+    seam.distances = &beside;
+    seam.besideSurround = true;
+    seam.creaseMoves = &creaseMoves;
+    const int n = int(run.points.size());
+    result.seamMaxBefore = LargestCounted(beside, param.counted, n);
+    const double target = param.seamTarget > 0 ? param.seamTarget : result.maxAfter;
+    while (result.seamExchanges < param.seamRounds && result.seamSetAside < param.seamRounds &&
+           !seam.pairs.Empty() && beside.Max() > target && !result.cancelled) {
+        if (ExchangeRound(seam, goOn)) {
+            ++result.seamExchanges;
+        } else if (!result.cancelled) {
+            seamCounted[size_t(beside.Worst())] = 0;
+            beside.Recount();
+            ++result.seamSetAside;
+        }
+    }
+    result.seamMaxAfter = LargestCounted(beside, param.counted, n);
 }
 
 } // namespace detail
@@ -1025,48 +1101,22 @@ inline MaxErrorExchangeResult ExchangeForMaxError(const PointArray &points, cons
     SurfelMaker::Set trial;
     // A largest distance lower by less than `rounding` is the same: projections summed in another
     // order (a trial's surface holds the surfels near the points it projects) differ in the last bits.
-    detail::ExchangeState state{points,  normals, param,   maker,  clusters,          distances,
+    detail::ExchangeState state{points,  normals, param,   maker,  clusters,          &distances,
                                 pairs,   current, trial,   settled, result,           count,
-                                1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), false};
+                                1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), false, nullptr};
     for (; round < param.maxRounds && !pairs.Empty() && distances.Max() > 0 && !result.cancelled; ++round) {
         if (!detail::ExchangeRound(state, goOn)) break;
         ++result.exchanges;
         result.maxima.push_back(distances.Max());
     }
-    if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn())
-        result.creaseFits = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials,
-                                                     result.creaseFitEntry, goOn);
-    result.maxAfter = distances.Max();
-    if (param.surround.Given() && !result.cancelled && goOn()) {
-        // The seam rounds: the tile's points, its halo's too, measured beside the surround and
-        // lowered while an exchange does so, down to the target. A point no exchange of this run
-        // lowers (its surfels are another tile's) is set aside: it stops counting, so it may not
-        // rise (BlendedDistances::Measure), and the rounds go on with the next.
-        // The clusters the run does not keep, as the rounds above left them, are hidden; the
-        // seam rounds keep them (a split keeps both halves, a merge takes clusters of counted points).
-        FixedSurround surround = param.surround;
-        surround.HideClustersNotKept(clusters, param.counted);
-        std::vector<char> seamCounted(points.size(), 1);
-        BlendedDistances beside(points, normals, diagonal, &seamCounted, &surround);
-        if (beside.Reset(current.fitted, goOn)) {
-            detail::ExchangeState seam{points,  normals, param,   maker,  clusters,          beside,
-                                       pairs,   current, trial,   settled, result,           count,
-                                       1e-9 * diagonal, 1.0 / (weightWidth * weightWidth), true};
-            result.seamMaxBefore = detail::LargestCounted(beside, param.counted, int(points.size()));
-            const double target = param.seamTarget > 0 ? param.seamTarget : result.maxAfter;
-            while (result.seamExchanges < param.seamRounds && result.seamSetAside < param.seamRounds &&
-                   !pairs.Empty() && beside.Max() > target && !result.cancelled) {
-                if (detail::ExchangeRound(seam, goOn)) {
-                    ++result.seamExchanges;
-                } else if (!result.cancelled) {
-                    seamCounted[size_t(beside.Worst())] = 0;
-                    beside.Recount();
-                    ++result.seamSetAside;
-                }
-            }
-            result.seamMaxAfter = detail::LargestCounted(beside, param.counted, int(points.size()));
-        }
+    std::vector<detail::CreaseMove> creaseMoves;
+    if (!result.cancelled && param.creaseFitMinMembers > 0 && goOn()) {
+        creaseMoves = detail::FitCreaseSurfels(points, clusters, maker, param, distances, current, result.trials,
+                                               result.creaseFitEntry, goOn);
+        result.creaseFits = int(creaseMoves.size());
     }
+    result.maxAfter = distances.Max();
+    if (param.surround.Given() && !result.cancelled && goOn()) detail::SeamRounds(state, creaseMoves, diagonal, goOn);
     surfels = std::move(current.fitted);
     return result;
 }

@@ -97,7 +97,7 @@ inline bool StaysAtCrease(const FlatVector<char> *creasePoints, const std::vecto
 /// `weightOf(l)`, the BlendWeight of surfels[l]. 0 for a cluster that stays (narrowed blend,
 /// a member flagged in creasePoints, or no move within maxPlaneDistance).
 /// With `atCreases`, the move is computed for crease clusters and narrowed blends too (the
-/// exchanges' last step, ExchangeForMaxError, keeps it only where the measure allows).
+/// crease fit after the exchanges of ExchangeForMaxError keeps it only where the measure allows).
 template <class WeightOf>
 float SurfelOffsetOf(const PointArray &points, const PointArray &normals, const NeighborGraph &graph,
                      const IndexArray &label, const FlatVector<char> *creasePoints, const std::vector<Surfel> &surfels,

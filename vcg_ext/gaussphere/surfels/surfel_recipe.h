@@ -32,7 +32,7 @@ struct SurfelRecipe
     const FlatVector<char> *pinnedPoints = nullptr; ///< clusters holding one are not fitted (crease points;
                                                     ///< with SpreadEvenly boundary points too)
     const FlatVector<char> *boundaryPoints = nullptr; ///< of those, clusters holding one stay unfitted at the
-                                                      ///< exchanges' last step too (CreaseMoves)
+                                                      ///< crease fit after the exchanges too (CreaseMoves)
 };
 
 /// The surfels of `clusters` (members = ClusterMembers(clusters)) by `recipe` before the fit:
