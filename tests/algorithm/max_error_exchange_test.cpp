@@ -648,10 +648,10 @@ TEST(MaxErrorExchange, LabelChangeUndoes)
     EXPECT_EQ(c.label[0], 2);
 }
 
-// The crease fit after the exchanges fits the surfels the fit leaves at creases where that lowers the sum of
-// squared distances without raising the largest distance or the 99.9th percentiles: on a cube at
-// low counts (every surfel merged and beside an edge), undoing its moves gives the metric's
-// figures before it.
+// The crease fit after the exchanges fits the surfels the fit leaves at creases where that lowers
+// the sum of squared distances without raising the largest distance or the 99.9th percentiles: on
+// a cube at low counts (every surfel merged and beside an edge), undoing its moves gives the
+// metric's figures before it.
 TEST(MaxErrorExchange, FitsCreaseSurfelsWhereTheErrorFalls)
 {
     const gstest::PointSet cube = gstest::CubeSurface(24, true);
