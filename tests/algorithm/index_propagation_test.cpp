@@ -288,6 +288,66 @@ TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSee
     omp_set_num_threads(threadsBefore);
 }
 
+// Called where OpenMP gives a team fewer threads than it asks for (inside a parallel region,
+// without nesting), the threads present take the seeds of the missing ones: the same labels.
+TEST_F(IndexPropagationOnBumps, AThreadTeamSmallerThanAskedGivesTheSameLabels)
+{
+    const BumpyGrid &d = Data();
+    const int threadsBefore = omp_get_max_threads();
+    const int nestedBefore = omp_get_max_active_levels();
+    omp_set_num_threads(1);
+    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
+    omp_set_num_threads(4);
+    omp_set_max_active_levels(1);
+    Clustering inner;
+    int asked = 0;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+        {
+            asked = omp_get_max_threads();
+            inner = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
+        }
+    }
+    omp_set_max_active_levels(nestedBefore);
+    omp_set_num_threads(threadsBefore);
+    EXPECT_EQ(asked, 4) << "the inner team asks for 4 threads and gets 1";
+    EXPECT_EQ(inner.clusterCount, one.clusterCount);
+    EXPECT_EQ(inner.label, one.label);
+}
+
+// A progress callback that answers false stops the labelling on any thread count: the call
+// returns false, and the progress it saw stays within [0, 1] and never falls.
+TEST_F(IndexPropagationOnBumps, ProgressRisesAndACancelStopsTheLabelling)
+{
+    const BumpyGrid &d = Data();
+    const int threadsBefore = omp_get_max_threads();
+    for (int threads : {1, 3}) {
+        omp_set_num_threads(threads);
+        std::vector<double> seen;
+        Clustering c;
+        c.label.assign(d.s.Size(), 0);
+        EXPECT_TRUE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), c, [&](double f) {
+            seen.push_back(f);
+            return true;
+        }));
+        ASSERT_GT(seen.size(), 10u) << threads << " threads";
+        for (size_t i = 0; i < seen.size(); ++i) {
+            EXPECT_GE(seen[i], 0.0);
+            EXPECT_LE(seen[i], 1.0);
+            if (i > 0) EXPECT_GE(seen[i], seen[i - 1]);
+        }
+        int calls = 0;
+        c.label.assign(d.s.Size(), 0);
+        EXPECT_FALSE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), c, [&](double) {
+            return ++calls < 3;
+        })) << threads << " threads";
+        EXPECT_GT(std::count(c.label.begin(), c.label.end(), detail::kUnlabelled), 0)
+            << "stopped before every point had a label";
+    }
+    omp_set_num_threads(threadsBefore);
+}
+
 // An empty seed order is the points' own order (the resampler's, after its spatial renumbering),
 // on one thread and on several.
 TEST_F(IndexPropagationOnBumps, EmptySeedOrderIsThePointOrder)

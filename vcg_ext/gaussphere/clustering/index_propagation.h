@@ -21,6 +21,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <thread>
 #include <vector>
@@ -174,6 +175,34 @@ int NumberClustersBySeed(int seedCount, SeedAt seedAt, int n, int *label)
 
 } // namespace detail
 
+namespace detail {
+
+/// The positions in the seed order of the seeds each thread owns (by their triangle), in that
+/// order: one gather over the seed order, in parallel, instead of one sweep per thread.
+template <class SeedAt>
+std::vector<IndexArray> SeedPositionsByOwner(int seedCount, SeedAt seedAt, const IndexArray &triangle,
+                                             const IndexArray &owner, int team)
+{
+    std::vector<std::uint8_t> ownerAt(static_cast<size_t>(seedCount));
+#pragma omp parallel for schedule(static)
+    for (int position = 0; position < seedCount; ++position)
+        ownerAt[size_t(position)] = std::uint8_t(owner[triangle[seedAt(position)]]);
+    std::vector<IndexArray> positions(static_cast<size_t>(team));
+#pragma omp parallel for schedule(static, 1)
+    for (int thread = 0; thread < team; ++thread) {
+        IndexArray &mine = positions[size_t(thread)];
+        for (int position = 0; position < seedCount; ++position)
+            if (ownerAt[size_t(position)] == thread) mine.push_back(position);
+    }
+    return positions;
+}
+
+/// How many seeds ahead the sweep fetches a seed's label and neighbour row: the seed order is
+/// unrelated to memory order, so each seed's data is a cache miss unless asked for early.
+constexpr size_t kSeedLookahead = 16;
+
+} // namespace detail
+
 /// Labels every point whose `clusters.label` is not -1 (points pre-marked -1 are
 /// excluded and stay -1). `triangle[i]` is the Gaussian triangle of normal i (>= 0 for every
 /// point, excluded ones included); seeds are taken in `seedOrder` (a permutation of the
@@ -186,9 +215,9 @@ int NumberClustersBySeed(int seedCount, SeedAt seedAt, int n, int *label)
 ///
 /// Parallel, with the result of the sequential algorithm: a label only spreads to points of
 /// its seed's triangle, so the triangles are independent of each other. Each thread labels
-/// the triangles it owns, taking their seeds in seedOrder (one sweep over it per thread keeps
-/// the accesses as local as the sequential pass's); the labels are then numbered by the seeds'
-/// positions in seedOrder, as a sequential pass over all seeds numbers them.
+/// the triangles it owns (at most 256 threads), taking their seeds in seedOrder; the labels
+/// are then numbered by the seeds' positions in seedOrder, as a sequential pass over all seeds
+/// numbers them.
 inline bool PropagateIndices(const PointArray &normals, const IndexArray &triangle,
                              const NeighborGraph &graph, const IndexArray &seedOrder,
                              const IndexPropagationParams &param, Clustering &clusters,
@@ -203,47 +232,51 @@ inline bool PropagateIndices(const PointArray &normals, const IndexArray &triang
     IndexArray count;
     const std::vector<int> byCount = detail::OccupiedTrianglesBySize(triangle, label, n, triangleCount, count);
     IndexArray owner(size_t(triangleCount), 0);
+    const int team = std::min(256, omp_get_max_threads());
+    detail::BalanceTriangleOwners(byCount, count, team, owner);
 
     const float maxChord2 = float(param.inscribedRadius * param.inscribedRadius);
     const int seedCount = seedOrder.empty() ? n : int(seedOrder.size());
     auto seedAt = [&seedOrder](int position) { return seedOrder.empty() ? position : seedOrder[position]; };
+    const std::vector<IndexArray> positionsOf = detail::SeedPositionsByOwner(seedCount, seedAt, triangle, owner, team);
     const int reportEvery = std::max(1, seedCount / 50);
     std::atomic<bool> cancelled(false);
-    std::atomic<long long> swept(0); // positions passed, summed over the threads
-    std::atomic<int> sweeping(0);    // threads not done yet
-#pragma omp parallel
+    std::atomic<long long> swept(0); // seeds passed, summed over the threads
+    std::atomic<int> sweeping(team); // threads not done yet
+#pragma omp parallel num_threads(team)
     {
-        const int team = omp_get_num_threads();
-#pragma omp single
-        { // for the threads the team actually has (fewer when nested, for instance)
-            sweeping = team;
-            detail::BalanceTriangleOwners(byCount, count, team, owner);
-        }
         // Only the calling thread (OpenMP's master) talks to the caller's callback.
         const int self = omp_get_thread_num();
         const bool reporter = self == 0;
-        const double sweepTotal = double(team) * std::max(1, seedCount);
         auto report = [&]() {
-            if (progress && !progress(double(swept) / sweepTotal)) cancelled = true;
+            if (progress && !progress(double(swept) / std::max(1, seedCount))) cancelled = true;
         };
-        std::vector<detail::PropagationVisit> pending; // cleared when a seed's cluster is complete
-        // Every thread walks all of seedOrder, so that each triangle's seeds come in its order.
-        for (int position = 0; position < seedCount; ++position) {
-            if (position % reportEvery == 0) {
-                if (position > 0) swept += reportEvery;
-                if (reporter) report();
-                if (cancelled.load(std::memory_order_relaxed)) break;
+        // A team smaller than asked for (nested regions) leaves the missing threads' seeds here.
+        for (int thread = self; thread < team; thread += omp_get_num_threads()) {
+            const IndexArray &mine = positionsOf[size_t(thread)];
+            std::vector<detail::PropagationVisit> pending; // cleared when a seed's cluster is complete
+            for (size_t i = 0; i < mine.size(); ++i) {
+                if (i % size_t(reportEvery) == 0) {
+                    if (i > 0) swept += reportEvery;
+                    if (reporter) report();
+                    if (cancelled.load(std::memory_order_relaxed)) break;
+                }
+                if (i + detail::kSeedLookahead < mine.size()) {
+                    const int ahead = seedAt(mine[i + detail::kSeedLookahead]);
+                    __builtin_prefetch(label + ahead);
+                    __builtin_prefetch(graph.begin(ahead));
+                }
+                const int position = mine[i];
+                const int seed = seedAt(position);
+                if (label[seed] != unlabelled) continue;
+                // Provisional label: the seed's position, unique per cluster; numbered below.
+                __atomic_store_n(label + seed, position, __ATOMIC_RELAXED);
+                detail::GrowCluster(normals, triangle, graph, param, maxChord2, seed, triangle[seed], position, label,
+                                    pending);
             }
-            const int seed = seedAt(position);
-            const int t = triangle[seed];
-            // The owner first: the labels of other triangles' points are other threads' to write.
-            if (owner[t] != self || label[seed] != unlabelled) continue;
-            // Provisional label: the seed's position, unique per cluster; numbered below.
-            __atomic_store_n(label + seed, position, __ATOMIC_RELAXED);
-            detail::GrowCluster(normals, triangle, graph, param, maxChord2, seed, t, position, label, pending);
+            --sweeping;
         }
         // The reporter keeps reporting (and listening for a cancel) until every thread is done.
-        --sweeping;
         detail::ReportUntilSweepsEnd(reporter, sweeping, cancelled, report);
     }
     if (cancelled) return false;
