@@ -62,6 +62,31 @@ bool Resident(const void *p)
     return mincore(start, page, &resident) == 0 && (resident & 1);
 }
 
+// Buffers of a huge page or more start at a huge-page boundary, so that whole huge pages can back
+// them; values survive growth from the small buffers to the mapped ones and back.
+TEST(FlatVector, LargeBuffersStartAtAHugePageBoundary)
+{
+    const size_t hugePage = size_t(2) << 20;
+    FlatVector<std::int32_t> v;
+    for (std::int32_t i = 0; i < (1 << 20); ++i) v.push_back(i); // through 4 KB ... 4 MB buffers
+    EXPECT_EQ(std::uintptr_t(v.data()) % hugePage, 0u);
+    FlatVector<char> exact(hugePage);
+    EXPECT_EQ(std::uintptr_t(exact.data()) % hugePage, 0u);
+    v.resize(1000);
+    v.shrink_to_fit();
+    bool same = v.size() == 1000;
+    for (std::int32_t i = 0; i < 1000; ++i) same &= v[size_t(i)] == i;
+    EXPECT_TRUE(same);
+}
+
+// A buffer no address space can hold is refused with std::bad_alloc, not a crash.
+TEST(FlatVector, AnImpossibleBufferThrowsBadAlloc)
+{
+    FlatVector<char> v;
+    EXPECT_THROW(v.reserve(size_t(1) << 50), std::bad_alloc);
+    EXPECT_TRUE(v.empty());
+}
+
 // 64 MB, above glibc's largest mmap threshold: a fresh mapping whose pages stay out of memory
 // until written. A FlatVector of ints leaves them so; a std::vector zeroes (touches) them all.
 TEST(FlatVector, ResizeLeavesFreshPagesUntouched)
