@@ -15,7 +15,7 @@ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)" --target stage splat_render
 mkdir -p "$out"
 name="$(basename "$input" .ply)"
-# Transparent huge pages for the resampler's buffers (README: Install).
+# Transparent huge pages for the host's heap too (README: Install).
 export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
 # OpenMP threads that wait sleep instead of spinning, which matters beside other work on the
 # machine (README: Install).
