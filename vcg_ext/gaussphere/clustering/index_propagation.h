@@ -173,12 +173,9 @@ int NumberClustersBySeed(int seedCount, SeedAt seedAt, int n, int *label)
     return next;
 }
 
-} // namespace detail
-
-namespace detail {
-
 /// The positions in the seed order of the seeds each thread owns (by their triangle), in that
-/// order: one gather over the seed order, in parallel, instead of one sweep per thread.
+/// order, gathered in one parallel pass over the seed order: a thread then reads its own seeds
+/// only.
 template <class SeedAt>
 std::vector<IndexArray> SeedPositionsByOwner(int seedCount, SeedAt seedAt, const IndexArray &triangle,
                                              const IndexArray &owner, int team)
