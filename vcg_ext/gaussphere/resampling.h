@@ -182,15 +182,17 @@ private:
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-/// values[i] = old values[order[i]], through a fresh buffer swapped in (no zeroing pass).
+/// values[i] = old values[order[i]], written into `spare`, which then holds the old values: one
+/// spare passed from array to array of the same size reuses memory already in use, where a fresh
+/// buffer per array would be first touched page by page (no zeroing pass either way).
 template <class Vector>
-void Permute(const IndexArray &order, Vector &values)
+void Permute(const IndexArray &order, Vector &values, Vector &spare)
 {
     assert(order.size() == values.size());
-    Vector permuted(values.size());
+    spare.resize(values.size());
 #pragma omp parallel for schedule(static)
-    for (int i = 0; i < int(order.size()); ++i) permuted[i] = values[order[i]];
-    values.swap(permuted);
+    for (int i = 0; i < int(order.size()); ++i) spare[i] = values[order[i]];
+    values.swap(spare);
 }
 
 inline std::string TooFewPointsMessage(const UsablePointCounts &counts)
@@ -307,11 +309,15 @@ inline void FindNeighbors(Run &run)
 {
     const char *sorting = "Gaussian sphere resampling: sorting the points in space";
     Report(run.cb, 1, sorting);
-    const IndexArray order = MortonOrder(run.points);
+    IndexArray order = MortonOrder(run.points);
     Report(run.cb, 1, sorting);
-    Permute(order, run.points);
-    Permute(order, run.normals);
-    Permute(order, run.source);
+    PointArray spare;
+    Permute(order, run.points, spare);
+    Permute(order, run.normals, spare);
+    // The order becomes the permuted source: each entry is read once, then overwritten.
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < int(order.size()); ++i) order[i] = run.source[order[i]];
+    run.source.swap(order);
     run.seedOrder = SeedOrder(run.points);
     vcg::CallBackPos *cb = run.cb;
     std::unique_ptr<PointGrid> grid(
