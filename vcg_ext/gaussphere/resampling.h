@@ -311,9 +311,11 @@ inline void FindNeighbors(Run &run)
     Report(run.cb, 1, sorting);
     IndexArray order = MortonOrder(run.points);
     Report(run.cb, 1, sorting);
-    PointArray spare;
-    Permute(order, run.points, spare);
-    Permute(order, run.normals, spare);
+    {
+        PointArray spare;
+        Permute(order, run.points, spare);
+        Permute(order, run.normals, spare);
+    }
     // The order becomes the permuted source: each entry is read once, then overwritten.
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < int(order.size()); ++i) order[i] = run.source[order[i]];
