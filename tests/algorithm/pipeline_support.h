@@ -14,6 +14,17 @@
 
 #include "test_support.h"
 
+// The pipeline and the metric on the test meshes are compiled once, in pipeline_support.cpp,
+// not again in every test file that runs them: each copy costs about a minute under the
+// sanitizers.
+extern template vcg::gaussphere::ResamplingResult vcg::gaussphere::ResamplePointSet<vcg::gaussphere::OrientedPointMesh>(
+    const vcg::gaussphere::OrientedPointMesh &, const vcg::gaussphere::ResamplingParams &, vcg::CallBackPos *);
+extern template vcg::gaussphere::metric::SurfelErrorStats
+vcg::gaussphere::metric::ComputeSurfelError<vcg::gaussphere::OrientedPointMesh, vcg::gaussphere::OrientedPointMesh>(
+    const vcg::gaussphere::OrientedPointMesh &, const vcg::gaussphere::OrientedPointMesh &,
+    const vcg::gaussphere::metric::SurfelErrorParams &, const vcg::gaussphere::metric::SurfelErrorAttributes &,
+    std::vector<float> *, vcg::CallBackPos *);
+
 namespace gstest {
 
 /// ResamplePointSet on the point set, with the thread count set by the caller (ScopedThreadCount).
