@@ -13,6 +13,9 @@
 #include "seam.h"
 #include "tile_params.h"
 
+template vcg::gaussphere::ResamplingResult vcg::gaussphere::ResamplePointSet<vcg::gaussphere::OrientedPointMesh>(
+    const vcg::gaussphere::OrientedPointMesh &, const vcg::gaussphere::ResamplingParams &, vcg::CallBackPos *);
+
 using namespace vcg::gaussphere;
 
 namespace gstile {

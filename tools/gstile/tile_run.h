@@ -20,6 +20,11 @@
 #include "target_share.h"
 #include "tile_files.h"
 
+// The resampler on the tiles' meshes is compiled once, in tile_run.cpp, for every program and
+// test that runs tiles.
+extern template vcg::gaussphere::ResamplingResult vcg::gaussphere::ResamplePointSet<vcg::gaussphere::OrientedPointMesh>(
+    const vcg::gaussphere::OrientedPointMesh &, const vcg::gaussphere::ResamplingParams &, vcg::CallBackPos *);
+
 namespace gstile {
 
 struct TileRunFigures
