@@ -46,6 +46,12 @@ hosts_debian_uri() {
 hosts_in_root() {
   [ -d "$HOSTS_ROOT/usr" ] || { echo "hosts_in_root: no root at $HOSTS_ROOT (run scripts/hosts/trixie_root.sh)" >&2; return 1; }
   mkdir -p -m 1777 /tmp/.X11-unix
+  # A private mount namespace needs root, and / to be a mount point: inside a plain chroot it is not.
+  unshare --mount --propagation private true 2>/dev/null || {
+    echo "hosts_in_root: cannot make a private mount namespace (unshare --mount --propagation private):" \
+      "run as root, and inside a chroot bind-mount its directory onto itself before entering it" >&2
+    return 1
+  }
   unshare --mount --propagation private -- bash -c '
     set -e
     root=$1; shift
