@@ -22,8 +22,9 @@ packages=(
   libcgal-dev python3 python3-matplotlib python3-numpy time hyperfine
   # distributed tiled runs (scripts/gstile_dask.py)
   python3-distributed
-  # the Debian roots of the hosts stage (MeshLab 2022.02 and 2025.07, the package checks)
-  mmdebstrap
+  # the Debian roots of the hosts stage (MeshLab 2022.02 and 2025.07, the package checks), and
+  # the bind mounts into them (mount is "required", not essential: a minimal root may lack it)
+  mmdebstrap mount
 )
 
 missing=()
