@@ -25,6 +25,8 @@ packages=(
   # the Debian roots of the hosts stage (MeshLab 2022.02 and 2025.07, the package checks), and
   # the bind mounts into them (mount is "required", not essential: a minimal root may lack it)
   mmdebstrap mount
+  # the .deb packages (CPack's dependency scan reads the plugins with file)
+  file
 )
 
 missing=()
