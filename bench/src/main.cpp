@@ -4,6 +4,7 @@
 //   gsbench compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]
 //                   [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]
 //                   [--tolerance F] [--no-process] [--trim-heap] [--target-percent P] [--max-error E]
+//                   [--seed-salt S]
 //     Runs our resampler at level N (default 8), tunes every peer in LIST to the same count
 //     (+- F, default 0.02), measures each output, and appends one CSV row per method to OUT.csv
 //     (default stdout). LIST (default: all) is a comma-separated subset of
@@ -36,9 +37,12 @@
 //     also reports the fraction of input points whose metric distance D* exceeds E, and ours'
 //     rows the largest distance to the own surfel's plane, the splits of each stage and the
 //     points ours reports beyond E (those the blend cannot bring closer).
+//     --seed-salt S (default 0) runs ours with ResamplingTuning::seedSalt = S: another, equally
+//     valid, order of its seeds, whose error figures show how far they move by chance
+//     (bench/seed_spread.py).
 //
 //   gsbench run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]
-//               [--variation V] [--cell C] [--target-count C] [--max-error E]
+//               [--variation V] [--cell C] [--target-count C] [--max-error E] [--seed-salt S]
 //     The process measured by compare: load, one method, save, nothing else.
 //
 //   gsbench export INPUT.ply --count N --out PREFIX [--methods LIST] [--meshlabserver PATH]
@@ -124,6 +128,14 @@ private:
     mutable std::set<std::string> used_;
 };
 
+/// --seed-salt: ResamplingTuning::seedSalt, a 32-bit unsigned number (default 0).
+std::uint32_t SeedSalt(const Options &opt)
+{
+    const unsigned long long salt = std::stoull(opt.Get("--seed-salt", "0"));
+    if (salt > 0xffffffffull) throw std::invalid_argument("--seed-salt must be below 2^32");
+    return std::uint32_t(salt);
+}
+
 std::vector<std::string> Split(const std::string &list)
 {
     std::vector<std::string> items;
@@ -190,6 +202,7 @@ struct OursConfig
     int level = 8;
     int targetCount = 0;      ///< ResamplingParams::targetCount (0 = off)
     double maxError = 0;      ///< ResamplingParams::maxErrorFraction (0 = off)
+    std::uint32_t seedSalt = 0; ///< ResamplingTuning::seedSalt
 };
 
 vcg::gaussphere::ResamplingResult RunOurs(const PointMesh &input, const OursConfig &config, int threads, double *seconds)
@@ -198,6 +211,7 @@ vcg::gaussphere::ResamplingResult RunOurs(const PointMesh &input, const OursConf
     param.subdivisionLevel = config.level;
     param.targetCount = config.targetCount;
     param.maxErrorFraction = config.maxError;
+    param.tuning.seedSalt = config.seedSalt;
     omp_set_num_threads(threads);
     const auto start = std::chrono::steady_clock::now();
     vcg::gaussphere::ResamplingResult result = vcg::gaussphere::ResamplePointSet(input, param);
@@ -384,6 +398,7 @@ int Compare(const std::string &inputPath, const Options &opt)
         Split(opt.Get("--methods", "ours,ours-circular,cgal-hierarchy,cgal-grid,meshlab-poisson,floor"));
     std::vector<int> threadCounts;
     for (const std::string &t : Split(opt.Get("--threads", "1,2"))) threadCounts.push_back(std::stoi(t));
+    const std::uint32_t seedSalt = SeedSalt(opt);
     opt.RejectUnused();
     if (threadCounts.empty()) throw std::invalid_argument("--threads needs at least one count");
     if (!(targetPercent >= 0 && targetPercent <= 100)) throw std::invalid_argument("--target-percent must be in (0, 100]");
@@ -398,6 +413,7 @@ int Compare(const std::string &inputPath, const Options &opt)
     std::string variant = "_n" + std::to_string(level);
     if (targetPercent > 0) variant += "_t" + Number(targetPercent);
     if (maxError > 0) variant += "_e" + Number(maxError);
+    if (seedSalt != 0) variant += "_s" + std::to_string(seedSalt);
     auto outputPath = [&](const std::string &method) { return work + "/" + name + variant + "_" + method + ".ply"; };
 
     PointMesh input;
@@ -405,11 +421,13 @@ int Compare(const std::string &inputPath, const Options &opt)
     OursConfig config;
     config.level = level;
     config.maxError = maxError;
+    config.seedSalt = seedSalt;
     if (targetPercent > 0) config.targetCount = std::max(1, int(std::lround(targetPercent / 100.0 * input.vn)));
     // The arguments that make `gsbench run ours` do the same as the in-process runs.
     std::vector<std::string> oursArguments = {"--level", std::to_string(level)};
     if (config.targetCount > 0) oursArguments.insert(oursArguments.end(), {"--target-count", std::to_string(config.targetCount)});
     if (maxError > 0) oursArguments.insert(oursArguments.end(), {"--max-error", Number(maxError, 17)});
+    if (config.seedSalt != 0) oursArguments.insert(oursArguments.end(), {"--seed-salt", std::to_string(config.seedSalt)});
     const double diagonal = input.bbox.Diag();
     // The metric and the searches use every core; only the timed runs pin the thread count.
     const int cores = omp_get_num_procs();
@@ -653,6 +671,7 @@ int RunOne(const std::string &method, const std::string &inputPath, const std::s
     config.level = level;
     config.targetCount = opt.Int("--target-count", 0);
     config.maxError = opt.Real("--max-error", 0);
+    config.seedSalt = SeedSalt(opt);
     opt.RejectUnused();
 
     PointMesh input, output;
@@ -770,8 +789,9 @@ int Usage(const char *program)
                  "usage: %s compare INPUT.ply --name NAME [--level N] [--methods LIST] [--threads LIST]\n"
                  "                  [--runs R] [--csv OUT.csv] [--work DIR] [--meshlabserver PATH]\n"
                  "                  [--tolerance F] [--no-process] [--trim-heap] [--target-percent P] [--max-error E]\n"
+                 "                  [--seed-salt S]\n"
                  "       %s run METHOD INPUT.ply OUTPUT.ply [--level N] [--threads T] [--size S]\n"
-                 "                  [--variation V] [--cell C] [--target-count C] [--max-error E]\n"
+                 "                  [--variation V] [--cell C] [--target-count C] [--max-error E] [--seed-salt S]\n"
                  "       %s export INPUT.ply --count N --out PREFIX [--methods LIST] [--meshlabserver PATH]\n"
                  "                  [--work DIR] [--tolerance F] [--csv OUT.csv]\n"
                  "(see the comment at the top of bench/src/main.cpp)\n",

@@ -324,6 +324,24 @@ TEST(ResamplingPipeline, IdenticalOutputForOneAndTwoThreads)
     gstest::ExpectValidResult(one, s);
 }
 
+// A seed salt draws another clustering of the same kind: other clusters, a valid result, and a
+// count within a few percent of the unsalted one; salt 0 is the default order.
+TEST(ResamplingPipeline, ASeedSaltDrawsAnotherClusteringOfTheSameKind)
+{
+    const gstest::PointSet s = NoisySphere(20000, 21);
+    const ResamplingResult unsalted = gstest::Resample(s);
+    ResamplingParams p;
+    p.tuning.seedSalt = 0;
+    EXPECT_EQ(gstest::Resample(s, p).representative, unsalted.representative);
+    for (std::uint32_t salt : {1u, 0x9e3779b9u}) {
+        p.tuning.seedSalt = salt;
+        const ResamplingResult salted = gstest::Resample(s, p);
+        gstest::ExpectValidResult(salted, s);
+        EXPECT_NE(salted.representative, unsalted.representative) << "salt " << salt;
+        EXPECT_NEAR(double(salted.surfels.size()) / unsalted.surfels.size(), 1.0, 0.05) << "salt " << salt;
+    }
+}
+
 // representative[] and memberCount agree, also when some vertices are skipped and
 // deleted vertices are present; stats count them.
 TEST(ResamplingPipeline, RepresentativeMatchesMemberCounts)

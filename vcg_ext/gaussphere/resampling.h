@@ -320,7 +320,7 @@ inline void FindNeighbors(Run &run)
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < int(order.size()); ++i) order[i] = run.source[order[i]];
     run.source.swap(order);
-    run.seedOrder = SeedOrder(run.points);
+    run.seedOrder = SeedOrder(run.points, run.param.tuning.seedSalt);
     vcg::CallBackPos *cb = run.cb;
     std::unique_ptr<PointGrid> grid(
         new PointGrid(run.points, PointGrid::kPointsPerCell, [cb, sorting]() { Report(cb, 1, sorting); }));

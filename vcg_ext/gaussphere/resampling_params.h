@@ -41,6 +41,8 @@ struct ResamplingTuning
     int maxIterations = 6;         ///< rounds of normalization and rejoining at most (they stop when nothing splits)
     double coverageMargin = 0.75;  ///< ellipse growth, in local sample spacings, so that neighbours overlap
     double mergeWithin = 1.15;     ///< TargetCount: merge down from a level giving at most this x the target
+    std::uint32_t seedSalt = 0;    ///< mixed into the seed order's hash (seed_order.h): each value is another,
+                                   ///< equally valid draw of where clusters start (bench/seed_spread.py)
 
     /// Empty when valid, else a message naming the field.
     std::string Validate() const

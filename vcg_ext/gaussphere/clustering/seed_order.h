@@ -13,6 +13,8 @@
 // cluster depends on lies within a few cluster sizes of it. The hash reads the point's own
 // coordinates alone and ignores a power-of-two scale (the resampler's unit scale), so a part of a
 // scan gets the same order alone or inside the whole; equal hashes keep the points' own order.
+// A salt mixed into the hash gives another order of the same kind: another, equally valid, draw
+// of where the clusters start (bench/seed_spread.py measures how the error figures move with it).
 #ifndef VCG_EXT_GAUSSPHERE_SEED_ORDER_H
 #define VCG_EXT_GAUSSPHERE_SEED_ORDER_H
 
@@ -31,8 +33,9 @@ namespace gaussphere {
 
 /// A 32-bit hash of a point that multiplying it by a power of two leaves alone: of each
 /// coordinate's sign and mantissa, and of how many binary orders of magnitude it lies below the
-/// largest one (splitmix64's mixing over them). Zeros hash alike at any scale.
-inline std::uint32_t HashPosition(const vcg::Point3f &p)
+/// largest one (splitmix64's mixing over them), started from a value `salt` picks. Zeros hash
+/// alike at any scale.
+inline std::uint32_t HashPosition(const vcg::Point3f &p, std::uint32_t salt = 0)
 {
     std::uint32_t bits[3];
     int largest = 0;
@@ -40,7 +43,7 @@ inline std::uint32_t HashPosition(const vcg::Point3f &p)
         std::memcpy(&bits[d], &p[d], sizeof bits[d]);
         largest = std::max(largest, int(bits[d] >> 23 & 0xff));
     }
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    std::uint64_t h = 0x9e3779b97f4a7c15ull ^ std::uint64_t(salt) * 0xd1b54a32d192ed03ull;
     for (int d = 0; d < 3; ++d) {
         const int exponent = int(bits[d] >> 23 & 0xff);
         const std::uint32_t below = exponent == 0 ? 0xffu : std::uint32_t(largest - exponent);
@@ -52,16 +55,17 @@ inline std::uint32_t HashPosition(const vcg::Point3f &p)
     return std::uint32_t(h >> 32);
 }
 
-/// Output: the indices of `points` by increasing HashPosition, equal hashes by increasing index.
-/// The same for the points multiplied by any power of two (the resampler's unit scale), so a part
-/// of a scan, at its own unit scale, gets its points in the same relative order as the whole.
-inline IndexArray SeedOrder(const PointArray &points)
+/// Output: the indices of `points` by increasing HashPosition(point, salt), equal hashes by
+/// increasing index. The same for the points multiplied by any power of two (the resampler's unit
+/// scale), so a part of a scan, at its own unit scale, gets its points in the same relative order
+/// as the whole.
+inline IndexArray SeedOrder(const PointArray &points, std::uint32_t salt = 0)
 {
     const long long n = (long long)points.size();
     // The hash above the index in one word: half the bytes to sort of a (key, index) pair.
     FlatVector<std::uint64_t> keyed(static_cast<size_t>(n));
 #pragma omp parallel for schedule(static)
-    for (long long i = 0; i < n; ++i) keyed[size_t(i)] = std::uint64_t(HashPosition(points[size_t(i)])) << 32 | std::uint64_t(i);
+    for (long long i = 0; i < n; ++i) keyed[size_t(i)] = std::uint64_t(HashPosition(points[size_t(i)], salt)) << 32 | std::uint64_t(i);
     RadixSortStable(keyed, [](std::uint64_t item) { return item >> 32; });
     IndexArray order(static_cast<size_t>(n));
 #pragma omp parallel for schedule(static)
