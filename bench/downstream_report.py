@@ -20,7 +20,7 @@ METHOD_LABEL = {
     "ours-quality": "ours (confidence = points represented)",
     "ours-area": "ours (confidence = ellipse area)",
     "ours-sqrt": "ours (confidence = square root of the points represented)",
-    "ours-nofit": "ours at the cluster centroids (no fit), unweighted",
+    "ours-nofit": "ours without the fit to the blended surface (--fit-offsets 0), unweighted",
     "ours-even": "ours for reconstruction (level 8, --spread-evenly 1: the same count; what resample_and_reconstruct.mlx reconstructs), unweighted",
     "cgal-hierarchy": "CGAL hierarchy",
     "cgal-grid": "CGAL grid",

@@ -235,7 +235,8 @@ def downstream():
              "On how many models ours' RMS and p99 are lower than the peer's and its max at most 10 % above:",
              downstream_report.wins_table(rows)]
     for variant in variants:
-        parts += [f"The same with {downstream_report.METHOD_LABEL[variant]} in place of ours:",
+        parts += [f"The same table for {downstream_report.METHOD_LABEL[variant]}, in place of the feature-sensitive "
+                  "output (level 8, unweighted):",
                   downstream_report.wins_table(rows, variant)]
     for stat, title in downstream_report.STATS:
         parts += [f"{title} of the distance both ways, 10⁻³ of the diagonal (best compared method in bold):",
