@@ -46,13 +46,13 @@ const char *const kScreenedPoissonUnweighted =
 const std::vector<ShippedScript> &ShippedScripts()
 {
     static const std::vector<ShippedScript> scripts = {
-        {"resample_level8.mlx", "the paper's defaults (level 8)", {}},
+        {"resample_level8.mlx", "the defaults (level 8)", {}},
         {"resample_level16.mlx", "a finer Gaussian sphere: more surfels, lower error", {{"SubdivisionLevel", "16"}}},
         {"resample_level24.mlx", "finer still", {{"SubdivisionLevel", "24"}}},
         {"resample_10_percent.mlx", "exactly 10 % of the input points", {{"TargetPercentage", "10"}}},
         {"resample_max_error.mlx", "an error bound of 0.001 of the bounding-box diagonal", {{"MaxError", "0.001"}}},
         {"resample_colorize.mlx", "level 8, the input coloured by cluster", {{"ColorizeClusters", "true"}}},
-        {"resample_level8_nofit.mlx", "level 8, surfels at their cluster centroids (the paper)", {{"FitOffsets", "false"}}},
+        {"resample_level8_nofit.mlx", "level 8, surfels not fitted to the blended surface (FitOffsets off)", {{"FitOffsets", "false"}}},
         {"resample_and_reconstruct.mlx",
          "level 8's count spread evenly (*Gaussian Sphere Resampling for Surface Reconstruction*), then MeshLab's "
          "Screened Poisson (depth 8) on them",
@@ -80,7 +80,7 @@ void PrintTable(ParameterAudience audience)
     std::printf("| name | `gsresample` | default | valid | meaning |\n|---|---|---|---|---|\n");
     for (const ParameterSpec &spec : ParameterTable()) {
         if (spec.audience != audience) continue;
-        const std::string option = spec.option ? std::string("`") + spec.option + "`" : "";
+        const std::string option = spec.option ? std::string("`") + spec.option + "`" : "(MeshLab only)";
         std::printf("| `%s` | %s | %s | %s | %s |\n", spec.name, option.c_str(), DefaultText(spec).c_str(),
                     spec.RangeText().c_str(), spec.help);
     }
@@ -89,9 +89,15 @@ void PrintTable(ParameterAudience audience)
 void PrintReadme()
 {
     PrintTable(ParameterAudience::Everyone);
-    std::printf("\n*Gaussian Sphere Resampling for Surface Reconstruction* shows the same but `MaxError` and sets "
-                "`SpreadEvenly`. For experts and for reproducing the paper, `gsresample` also takes (the MeshLab "
-                "filters use the defaults):\n\n");
+    std::printf("\n*Gaussian Sphere Resampling for Surface Reconstruction* shows");
+    const char *separator = " ";
+    for (const ParameterSpec &spec : ParameterTable()) {
+        if (!InDialog(spec, ResamplingFilter::ForReconstruction)) continue;
+        std::printf("%s`%s`", separator, spec.name);
+        separator = ", ";
+    }
+    std::printf(" (all of the above but `MaxError`) and always sets `SpreadEvenly`. For experts and for reproducing "
+                "the paper, `gsresample` also takes (the MeshLab filters use the defaults):\n\n");
     PrintTable(ParameterAudience::Expert);
     std::printf("\nShipped scripts (`sample_data/`, made by `gsparams scripts`):\n\n| script | what |\n|---|---|\n");
     for (const ShippedScript &script : ShippedScripts()) std::printf("| `%s` | %s |\n", script.file, script.purpose);

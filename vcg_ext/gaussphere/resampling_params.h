@@ -192,8 +192,8 @@ inline const std::vector<ParameterSpec> &ParameterTable()
          [](const P &p) { return double(p.targetCount); }, [](P &p, double v) { p.targetCount = int(v); }},
         {"TargetPercentage", "--percentage", "Target percentage", ParameterKind::Float, 0, 0, 100, false, false,
          ParameterAudience::Everyone,
-         "Exact number of surfels as a percentage of the input points (0 = off), e.g. 10 for one surfel per ten "
-         "points; overrides the level.",
+         "Exact number of surfels as a percentage of the usable input points, those with a finite position and a "
+         "finite, non-zero normal (0 = off), e.g. 10 for one surfel per ten points; overrides the level.",
          [](const P &p) { return p.targetPercentage; }, [](P &p, double v) { p.targetPercentage = v; }},
         {"MaxError", "--max-error", "Maximum error (fraction of diagonal)", ParameterKind::Float, 0, 0, 1, false, true,
          ParameterAudience::Everyone,
@@ -209,12 +209,15 @@ inline const std::vector<ParameterSpec> &ParameterTable()
         {"CreaseAngle", "--crease-angle", "Crease angle (degrees)", ParameterKind::Float, 45, 0, 120, false, true,
          ParameterAudience::Everyone,
          "A point whose neighbour's normal is turned by more than this angle lies on a crease, where clusters are "
-         "kept small so that surfels do not round sharp edges off (0 = off).",
+         "kept small so that surfels do not round sharp edges off; the rim of an open surface gets the same limits "
+         "(0 = off, at creases and rims alike).",
          [](const P &p) { return p.creaseAngle; }, [](P &p, double v) { p.creaseAngle = v; }},
         {"FitOffsets", "--fit-offsets", "Fit surfels to the blended surface", ParameterKind::Bool, 1, 0, 1, false,
          false, ParameterAudience::Everyone,
          "Move each surfel along its normal so that the surface the surfels blend into passes through the input "
-         "points (off: at the cluster centroids, as in the paper); each move is kept as SurfelFitOffset.",
+         "points, keeping each move as SurfelFitOffset (off: each surfel stays on the sampled surface, at its "
+         "cluster's centroid moved along the normal to the height of the members around it, or at the centroid for "
+         "clusters of fewer than 6 points).",
          [](const P &p) { return p.fitOffsets ? 1.0 : 0.0; }, [](P &p, double v) { p.fitOffsets = v != 0; }},
         {"ColorizeClusters", nullptr, "Colour input by cluster", ParameterKind::Bool, 0, 0, 1, false, false,
          ParameterAudience::Everyone, "Give every cluster a random colour on the input layer, to inspect the clustering.",
