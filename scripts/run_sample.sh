@@ -15,10 +15,10 @@ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)" --target stage splat_render
 mkdir -p "$out"
 name="$(basename "$input" .ply)"
-# Transparent huge pages for the host's heap too (README: Install).
+# Transparent huge pages for the host's heap too (README: Performance).
 export GLIBC_TUNABLES=glibc.malloc.hugetlb=1
 # OpenMP threads that wait sleep instead of spinning, which matters beside other work on the
-# machine (README: Install).
+# machine (README: Performance).
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 server=(xvfb-run -a -s "-screen 0 1280x1024x24" "$build/stage/bin/meshlabserver")
 # .surfel keeps the ellipse axes; the PLY copy (normals, radii) opens in any viewer.
