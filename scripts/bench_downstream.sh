@@ -22,8 +22,8 @@
 # Environment: BUILD_DIR (default <repo>/build-bench), JOBS (default 2), SAMPLES (area samples
 # per mesh for the distance, default 1,000,000), OURS_WEIGHTS (more weightings of ours to
 # reconstruct, each a row ours-WEIGHT, space-separated among quality, none, area, sqrt (the square
-# root of the points represented), nofit, even; default quality; nofit is ours with --fit-offsets 0, unweighted: the surfels at their cluster centroids,
-# what a consumer that reads neither weight nor fit gets from the paper's placement; even is ours at
+# root of the points represented), nofit, even; default quality; nofit is ours with --fit-offsets 0, unweighted: the surfels on the sampled surface, not
+# fitted to the blend; even is ours at
 # level 8 with --spread-evenly 1 (the same count, surfels spread evenly for reconstruction), unweighted), PEERS (default "cgal-hierarchy cgal-grid meshlab-poisson"),
 # FLOOR (0: no reconstruction from the input itself), WORK (default ${TMPDIR:-/tmp}/gsbench-downstream: the
 # point sets and reconstructions, kept for viewing), OUT (the results' folder instead of the
