@@ -20,6 +20,7 @@ endfunction()
 function(gaussphere_add_file_libraries vcglib_dir)
   add_library(vcg_plylib STATIC ${vcglib_dir}/wrap/ply/plylib.cpp)
   target_include_directories(vcg_plylib SYSTEM PUBLIC ${vcglib_dir})
-  add_library(surfel_file STATIC ${GAUSSPHERE_SOURCE_DIR}/io_surfel/surfel_file.cpp)
+  add_library(surfel_file STATIC ${GAUSSPHERE_SOURCE_DIR}/io_surfel/surfel_file.cpp
+              ${GAUSSPHERE_SOURCE_DIR}/io_surfel/file_replacement.cpp)
   target_include_directories(surfel_file PUBLIC ${GAUSSPHERE_SOURCE_DIR}/io_surfel)
 endfunction()

@@ -91,9 +91,7 @@ inline std::vector<LogLine> RunLog(const vcg::gaussphere::ResamplingStats &s)
             log.push_back({true, Format("Gaussian sphere resampling: error bound: %d point(s) remain beyond it (largest "
                                         "%g = %.5f x diagonal): %s",
                                         s.pointsAboveErrorBound, s.surfaceErrorMax * s.diagonal, s.surfaceErrorMax,
-                                        s.SurfaceBoundCapped()
-                                            ? "the refinement stopped at its cap of projection rounds"
-                                            : "the surfels around them are split and narrowed as far as they go")});
+                                        s.ErrorBoundMissReason().c_str())});
     }
     if (s.skippedNormals > 0)
         log.push_back({true, Format("Gaussian sphere resampling skipped %d point(s) with a zero or invalid normal",

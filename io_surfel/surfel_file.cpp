@@ -1,5 +1,7 @@
 #include "surfel_file.h"
 
+#include "file_replacement.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -353,18 +355,16 @@ bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, s
 
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error) {
-  // Written beside and renamed over `path`: a failed save leaves no truncated file behind
-  // and the previous file intact.
+  // Through a FileReplacement: a failed save leaves the previous file intact and no partial one.
   if (!checkGeometry(surfels, error)) return false;
-  const std::string partPath = path + ".part";
-  std::ofstream out(partPath, std::ios::binary | std::ios::trunc);
-  if (!out) return fail(error, "cannot open " + quotedPath(partPath) + " for writing: " + std::strerror(errno));
-  const bool written = writeSurfels(out, surfels, error);
+  FileReplacement replacement;
+  if (!replacement.open(path, error)) return false;
+  std::ofstream out(replacement.writePath(), std::ios::binary | std::ios::trunc);
+  if (!out) return fail(error, "cannot write " + quotedPath(path) + ": " + std::strerror(errno));
+  if (!writeSurfels(out, surfels, error)) return false;
   out.close();
-  if (written && out && std::rename(partPath.c_str(), path.c_str()) == 0) return true;
-  const std::string reason = std::strerror(errno);
-  std::remove(partPath.c_str());
-  return fail(error, "cannot write " + quotedPath(path) + ": " + reason);
+  if (!out) return fail(error, "cannot write " + quotedPath(path) + ": " + std::strerror(errno));
+  return replacement.commit(error);
 }
 
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {

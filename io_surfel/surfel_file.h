@@ -65,7 +65,8 @@ bool readSurfelCount(const std::string& path, std::uint64_t& count, std::string&
 
 // Writing refuses, before writing anything, surfels the reader would refuse (non-finite
 // geometry), naming the first one; quality, blend scale, fit offset and colour are written as
-// they are.
+// they are. writeSurfelFile saves through a FileReplacement (file_replacement.h): a failed save
+// leaves the previous file as it was.
 bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, std::string& error);
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error);

@@ -7,16 +7,26 @@
 // Exit status: 0 done (a missed --target is a warning), 1 the input cannot be read, the
 // resampling fails or the output cannot be written, 2 a bad command line or parameter. Every
 // failure prints one line `gsresample: error: ...` on stderr; the command line and the
-// parameters are checked before the input is read, and the output appears only when complete.
+// parameters are checked before the input is read, the output path before the resampling runs,
+// and the output appears only when complete (io_surfel/file_replacement.h); an output that is
+// the input file is refused.
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <vcg_ext/gaussphere/oriented_point_mesh.h>
 #include <vcg_ext/gaussphere/resampling.h>
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
+#include <io_surfel/file_replacement.h>
 #include <io_surfel/printable_text.h>
+#include <io_surfel/surfel_file.h>
 #include <io_surfel/surfel_records_mesh.h>
 
 #include <wrap/io_trimesh/export_ply.h>
@@ -106,30 +116,50 @@ bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &err
     return true;
 }
 
-bool EndsWith(const std::string &text, const std::string &suffix)
+/// True when `path` ends in .surfel, in any case (MeshLab reads the suffix so too).
+bool IsSurfelPath(const std::string &path)
 {
-    return text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const std::string suffix = ".surfel";
+    if (path.size() <= suffix.size()) return false;
+    for (size_t i = 0; i < suffix.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(path[path.size() - suffix.size() + i])) != suffix[i]) return false;
+    return true;
 }
 
-/// Writes `surfels` to `path` through `path`.part, renamed when complete.
-bool WriteOutput(const std::string &path, OrientedPointMesh &surfels, std::string &error)
+/// True when both paths name one existing file (the same device and inode).
+bool SameFile(const std::string &a, const std::string &b)
 {
-    if (EndsWith(path, ".surfel")) return surfel_io::writeSurfelFile(path, surfel_io::recordsFromMesh(surfels), error);
-    const std::string partPath = path + ".part";
-    const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
-                         vcg::tri::io::Mask::IOM_VERTQUALITY;
-    if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(surfels, partPath.c_str(), saveMask, true) == 0 &&
-        std::rename(partPath.c_str(), path.c_str()) == 0)
-        return true;
-    std::remove(partPath.c_str());
-    error = "the PLY writer failed";
-    return false;
+    struct stat sa, sb;
+    return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/// Writes `surfels` to the prepared `output` and puts the file in place; false with a message.
+bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, OrientedPointMesh &surfels,
+                 std::string &error)
+{
+    std::string reason;
+    if (IsSurfelPath(path)) {
+        std::ofstream out(output.writePath(), std::ios::binary | std::ios::trunc);
+        if (out) surfel_io::writeSurfels(out, surfel_io::recordsFromMesh(surfels), reason);
+        if (out) out.close();
+        if (!out && reason.empty()) reason = std::strerror(errno);
+    } else {
+        const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
+                             vcg::tri::io::Mask::IOM_VERTQUALITY;
+        if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(surfels, output.writePath().c_str(), saveMask, true) != 0)
+            reason = "the PLY writer failed";
+    }
+    if (!reason.empty()) {
+        error = "cannot write " + PathText(path) + ": " + reason;
+        return false;
+    }
+    return output.commit(error);
 }
 
 void PrintFigures(const ResamplingStats &s)
 {
     std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
-                "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.3g -> %.3g) crease-narrowed %d rim %d stray-splits %d halvings %d above-bound %d (max %.5f) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+                "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.3g -> %.3g) crease-narrowed %d rim %d stray-splits %d halvings %d above-bound %d (max %.3g) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
                 "refinement %.3f surfels %.3f exchanges %.3f)\n",
                 s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
                 s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.normalErrorMax, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
@@ -150,9 +180,13 @@ int Run(int argc, char **argv)
     const std::string invalid = line.param.Validate();
     if (!invalid.empty()) return Fail(2, invalid);
 
+    if (SameFile(line.input, line.output))
+        return Fail(2, "the output " + PathText(line.output) + " is the input file: give another output path");
     OrientedPointMesh in, out;
     if (!gsresample::ReadOrientedPoints(line.input, in, error))
         return Fail(1, "cannot read " + PathText(line.input) + ": " + error);
+    surfel_io::FileReplacement output; // prepared before the resampling: an unwritable path fails at once
+    if (!output.open(line.output, error)) return Fail(1, error);
     const ResamplingResult r = ResamplePointSet(in, line.param);
     WriteSurfels(r.surfels, out);
     PrintFigures(r.stats);
@@ -160,8 +194,11 @@ int Run(int argc, char **argv)
     if (!miss.empty())
         std::fprintf(stderr, "gsresample: warning: %d surfels instead of the %d requested: %s\n", r.stats.outputCount,
                      r.stats.targetCount, miss.c_str());
-    if (!WriteOutput(line.output, out, error))
-        return Fail(1, "cannot write " + PathText(line.output) + ": " + error);
+    const std::string beyond = r.stats.ErrorBoundMissReason();
+    if (!beyond.empty())
+        std::fprintf(stderr, "gsresample: warning: %d point(s) remain beyond the error bound (largest distance %g x "
+                     "diagonal): %s\n", r.stats.pointsAboveErrorBound, r.stats.surfaceErrorMax, beyond.c_str());
+    if (!WriteOutput(line.output, output, out, error)) return Fail(1, error);
     return 0;
 }
 

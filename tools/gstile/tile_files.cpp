@@ -1,6 +1,6 @@
 #include "tile_files.h"
 
-#include <unistd.h>
+#include <io_surfel/file_replacement.h>
 
 #include <cerrno>
 #include <cinttypes>
@@ -69,19 +69,15 @@ bool ReadTilePoints(const std::string &path, std::uint64_t count, const std::str
 bool WriteAtomically(const std::string &path, const std::function<bool(std::ostream &, std::string &)> &write,
                      std::string &error)
 {
-    const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
-        error = "cannot create " + temporary + ": " + std::strerror(errno);
-        return false;
-    }
+    surfel_io::FileReplacement replacement;
+    if (!replacement.open(path, error)) return false;
+    std::ofstream out(replacement.writePath(), std::ios::binary | std::ios::trunc);
     error.clear();
-    bool written = write(out, error);
+    bool written = out && write(out, error);
     out.close();
     written = written && !out.fail();
-    if (written && std::rename(temporary.c_str(), path.c_str()) == 0) return true;
+    if (written) return replacement.commit(error);
     if (error.empty()) error = "cannot write " + path + ": " + std::strerror(errno);
-    std::remove(temporary.c_str());
     return false;
 }
 

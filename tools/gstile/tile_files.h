@@ -48,9 +48,9 @@ std::string RerunError(int id, const std::string &reason);
 bool ReadTilePoints(const std::string &path, std::uint64_t count, const std::string &checksumHex,
                     std::vector<TilePoint> &points, std::string &error);
 
-/// Writes `path` through a temporary name unique to this process, renamed over `path` when
-/// `write` succeeded: a reader never sees a half-written file, and two processes writing the
-/// same file (a retried task beside its lost first run) do not mix their bytes.
+/// Writes `path` through a FileReplacement (io_surfel/file_replacement.h), renamed over `path`
+/// when `write` succeeded: a reader never sees a half-written file, and two processes writing the
+/// same file (a retried task beside its lost first run) each write a temporary file of their own.
 bool WriteAtomically(const std::string &path, const std::function<bool(std::ostream &, std::string &)> &write,
                      std::string &error);
 

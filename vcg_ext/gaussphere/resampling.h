@@ -127,6 +127,13 @@ struct ResamplingStats
     }
     /// The round cap, not a lack of clusters left to split, left points beyond the bound.
     bool SurfaceBoundCapped() const { return pointsAboveErrorBound > 0 && surfaceBoundRounds >= kSurfaceBoundRounds; }
+    /// ErrorBound: why points remain beyond the bound; empty when none does.
+    std::string ErrorBoundMissReason() const
+    {
+        if (sizeMode != SizeControl::ErrorBound || pointsAboveErrorBound == 0) return std::string();
+        return SurfaceBoundCapped() ? "the refinement stopped at its cap of projection rounds"
+                                    : "the surfels around them are split and narrowed as far as they go";
+    }
     double TotalSeconds() const
     {
         return secondsNeighbors + secondsPropagation + secondsNormalization + secondsRefinement + secondsSurfels +
