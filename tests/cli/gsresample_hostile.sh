@@ -89,6 +89,11 @@ header ascii 100 | head -n 5 > no_end.ply
 expect 1 "the file ends before end_header" no_end.ply out.surfel
 { header binary_little_endian 100; head -c 2399 /dev/zero; } > truncated.ply
 expect 1 "but only 2399 bytes follow" truncated.ply out.surfel
+# A malformed ASCII record would shift every later value in vcglib's reader: refused with its line.
+awk 'NR == 15 { $0 = $0 " 7" } { print }' hundred.ply > extra_value.ply
+expect 1 "cannot read extra_value.ply: line 15 (vertex 4): 7 values where the vertex has 6" extra_value.ply out.surfel
+sed '13s/^[^ ]*/1.0.0/' hundred.ply > bad_number.ply
+expect 1 "line 13 (vertex 2), property x: '1.0.0' is not a number" bad_number.ply out.surfel
 printf '\001\002\003\n%s\n' "$(head -c 300 /dev/zero | tr '\0' '\377')" > garbage.ply
 expect 1 "not a PLY file: it starts with '\\x01\\x02\\x03'" garbage.ply out.surfel
 expect 1 "cannot read missing.ply: cannot open the file: No such file or directory" missing.ply out.surfel

@@ -1,6 +1,7 @@
 // Reading oriented point sets from hostile and valid PLY files (tools/gsresample/ply_input.h).
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -166,16 +167,17 @@ TEST_F(PlyInput, CornerListsVcglibDoesNotReadAreCheckedAsSkippedOnes)
 
 TEST_F(PlyInput, AsciiFacesOfMoreCornersThanVcglibHoldsAreRefused)
 {
-    // In ASCII vcglib reads a list's count as an int, whatever its declared type.
+    // In ASCII vcglib reads a list's count as an int, whatever its declared type: the count
+    // must be in its type's range.
     std::string face = "600";
     for (int i = 0; i < 600; ++i) face += " 0";
     ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + face + "\n",
-                  "face record 0 has 600 corners; at most 255 are supported");
-    // fscanf reads "3000-1" as the count 3000, then -1, as plylib does.
+                  "line 16 (face 0), property vertex_indices, list count: '600' is out of range for uchar (0 to 255)");
+    // fscanf would read "3000-1" as the count 3000, then -1.
     std::string glued = "3000-1";
     for (int i = 0; i < 2999; ++i) glued += " 0";
     ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + glued + "\n",
-                  "face record 0 has 3000 corners");
+                  "line 16 (face 0), property vertex_indices, list count: '3000-1' is not an integer");
     ExpectRead(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) + "3 0 1 2\n", 3);
 }
 
@@ -184,7 +186,7 @@ TEST_F(PlyInput, FaceCornersThatAreNoVertexAreRefused)
     // vcglib indexes its vertices with the corners unchecked.
     ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) +
                       "4 0 1 2 100000000\n",
-                  "face record 0 names vertex 100000000 of 3");
+                  "line 16 (face 0), property vertex_indices, item 3: names vertex 100000000 of 3");
     std::string binary(3 * 24, '\0');
     const std::int32_t corners[3] = {0, 1, -5};
     binary += std::string(1, char(3));
@@ -246,9 +248,9 @@ TEST_F(PlyInput, MissingPropertiesAreRefused)
 
 TEST_F(PlyInput, TruncatedBodyIsRefused)
 {
-    // Long enough for the counts, short of the last row: vcglib's reader finds the end.
+    // Long enough for the counts, short of the last row.
     ExpectRefused(Header("ascii", "3") + "0.000000001 0.000000001 0.000000001 0 0 1\n1 0 0 0 0 1\n0 1",
-                  "vcglib's PLY reader failed");
+                  "line 13 (vertex 2): 2 values where the vertex has 6");
     ExpectRefused(Header("binary_little_endian", "3") + std::string(3 * 24 - 1, '\0'), "but only 71 bytes follow");
 }
 
@@ -343,4 +345,124 @@ TEST_F(PlyInput, BinaryLittleEndianWithFacesAndExtraPropertiesLoads)
     ASSERT_EQ(mesh.vn, 3);
     EXPECT_EQ(mesh.vert[2].P(), vcg::Point3f(2, 0, 0));
     EXPECT_EQ(mesh.vert[2].N(), vcg::Point3f(0, 0, -1));
+}
+
+// The ASCII body is checked record by record before vcglib's reader, which would shift every
+// later value after a malformed one (CheckAsciiBody). Header("ascii", ...) takes lines 1-10.
+
+TEST_F(PlyInput, AsciiRecordsOfTheWrongLengthAreRefusedWithTheirLine)
+{
+    ExpectRefused(Header("ascii", "3") + "0 0 0 0 0 1\n1 0 0 0 0 1 7\n0 1 0 0 0 1\n",
+                  "line 12 (vertex 1): 7 values where the vertex has 6");
+    ExpectRefused(Header("ascii", "3") + "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 1.00\n",
+                  "line 13 (vertex 2): 5 values where the vertex has 6");
+    // A record split over two lines: each is refused.
+    ExpectRefused(Header("ascii", "3") + "0 0 0\n0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n",
+                  "line 11 (vertex 0): 3 values where the vertex has 6");
+    ExpectRefused(Header("ascii", "3") + "0 0 0 0 0 1 1 0 0 0 0 1\n0.5 1 0 0 0 1\n",
+                  "line 11 (vertex 0): 12 values where the vertex has 6");
+    // Lines of a record with lists: the list's count says how many items follow.
+    const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+    ExpectRefused(Header("ascii", "3", faces) + AsciiRows(3) + "3 0 1 2 0\n",
+                  "line 16 (face 0): 5 values where this record has 4 (its list counts included)");
+    ExpectRefused(Header("ascii", "3", faces) + AsciiRows(3) + "3 0 1\n",
+                  "line 16 (face 0), property vertex_indices, item 2: missing (the line has 3 values, the list count is 3)");
+    ExpectRefused(Header("ascii", "3", faces + "property uchar tag\n") + AsciiRows(3) + "3 0 1 2\n",
+                  "line 17 (face 0), property tag: missing (the line has 4 values)");
+    ExpectRefused(Header("ascii", "3", faces) + AsciiRows(3) + "\n",
+                  "the file ends at line 16, after 0 of 1 face records");
+}
+
+TEST_F(PlyInput, AsciiValuesThatAreNotWholeNumbersAreRefused)
+{
+    const std::string before = Header("ascii", "3") + "0 0 0 0 0 1\n";
+    ExpectRefused(before + "1.0.0 0 0 0 0 1\n0 1 0 0 0 1\n", "line 12 (vertex 1), property x: '1.0.0' is not a number");
+    ExpectRefused(before + "1 0 1e 0 0 1\n0 1 0 0 0 1\n", "line 12 (vertex 1), property z: '1e' is not a number");
+    for (const char *token : {"abc", "nan(0x123)", "0x", "--1", "1,5", ".", "e5", "1e+", "0x1p", "infinit", "1.5f", "1_0"})
+        ExpectRefused(before + "1 0 0 0 0 1\n0 1 0 0 " + token + " 1\n",
+                      std::string("line 13 (vertex 2), property ny: '") + token + "' is not a number");
+    // Control bytes are quoted escaped, long tokens cut.
+    ExpectRefused(before + "1 0 0 0 0 1\n0 1 0 0 0 1\x0b\n", "property nz: '1\\x0b' is not a number");
+    ExpectRefused(before + "1 0 0 0 0 1\n0 1 0 0 0 " + std::string(1 << 20, '7') + "x\n",
+                  "property nz: '77777777777777777777777777777777...' is not a number");
+    // Long enough for the counts (CheckBodySize), one record short.
+    ExpectRefused(before + "1.0000000000000000000000 0 0 0 0 1\n", "the file ends at line 12, after 2 of 3 vertex records");
+    // Integer properties take decimal integers in their type's range.
+    const std::string extra = "property uchar red\nproperty int quality\n";
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 1.5 0\n", "line 13 (vertex 0), property red: '1.5' is not an integer");
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 256 0\n", "property red: '256' is out of range for uchar (0 to 255)");
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 -1 0\n", "property red: '-1' is out of range for uchar (0 to 255)");
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 0 2147483648\n",
+                  "property quality: '2147483648' is out of range for int (-2147483648 to 2147483647)");
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 0 99999999999999999999999\n",
+                  "property quality: '99999999999999999999999' is out of range for int");
+    ExpectRefused(Header("ascii", "1", extra) + "0 0 0 0 0 1 0 0x10\n", "property quality: '0x10' is not an integer");
+    ExpectRefused(Header("ascii", "3", "element extra 1\nproperty list char float data\n") + AsciiRows(3) + "-2 1 2\n",
+                  "line 16 (extra 0), property data, list count: '-2' is negative");
+    ExpectRefused(Header("ascii", "3", "element extra 1\nproperty list uchar short data\n") + AsciiRows(3) + "2 1 40000\n",
+                  "line 16 (extra 0), property data, item 1: '40000' is out of range for short");
+}
+
+TEST_F(PlyInput, AsciiContentAfterTheLastRecordIsRefused)
+{
+    ExpectRefused(Header("ascii", "3") + AsciiRows(3) + "\n  \njunk junk\n", "line 16: 'junk junk' after the last record");
+    ExpectRefused(Header("ascii", "3") + AsciiRows(4), "line 14: '3 6 0.5 0 0 1' after the last record");
+    ExpectRefused(Header("ascii", "3", "element face 1\nproperty list uchar int vertex_indices\n") + AsciiRows(3) +
+                      "3 0 1 2\n3 0 1 2",
+                  "line 17: '3 0 1 2' after the last record");
+    // A line is held whole, up to 16 MiB.
+    ExpectRefused(Header("ascii", "3") + AsciiRows(2) + "0 1 0 0 0 1" + std::string(17 << 20, ' ') + "\n",
+                  "line 13 (vertex 2): longer than 16777216 bytes");
+}
+
+TEST_F(PlyInput, AsciiLayoutsOfValidFilesAreRead)
+{
+    const std::string faces = "element face 2\nproperty list uchar int vertex_indices\nproperty uchar tag\n";
+    // CRLF line ends, tabs and runs of blanks, comments, blank lines between and after the
+    // records, and no line end after the last one.
+    ExpectRead("ply\r\nformat ascii 1.0\r\ncomment a\tcomment\r\n" + Header("ascii", "3", faces).substr(21) +
+                   "\t0 0 0  0 0 1\r\n\r\n 1\t0 0 0 0 1 \t\r\n0 1 0 0 0 1\r\n3 0 1 2 7\r\n   \r\n4\t0 1 2 0\t0\r\n\r\n\t\n \n",
+               3);
+    ExpectRead(Header("ascii", "3", faces) + AsciiRows(3) + "3 0 1 2 0\n3 2 1 0 255", 3);
+    // Lists vcglib skips, empty lists, and integer properties at their types' limits.
+    ExpectRead(Header("ascii", "2", "property char a\nproperty ushort b\nproperty uint c\nelement extra 2\n"
+                                    "property list uint double data\n") +
+                   "0 0 0 0 0 1 -128 65535 4294967295\n1 0 0 0 0 1 127 0 +0\n0\n3 1e300 -0 0x1p-3\n",
+               2);
+    ExpectRead(Header("ascii", "0"), 0);
+}
+
+TEST_F(PlyInput, AsciiNumbersReadAsBeforeTheCheck)
+{
+    // Every spelling fscanf reads whole: exponents, signs, points at either end, hexadecimal,
+    // nan and infinities in any case, overflow to infinity (the resampler skips such points).
+    const std::string body = "1e2 -2.5E-1 +.5 5. 0x1.8p1 0X10\n"
+                             "nan -NaN INF -inf Infinity -INFINITY\n"
+                             "1e999 -1e999 0000.125 -0 1 1E+0\n";
+    OrientedPointMesh ascii;
+    std::string error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(Write(Header("ascii", "3") + body), ascii, error)) << error;
+    ASSERT_EQ(ascii.vn, 3);
+    EXPECT_EQ(ascii.vert[0].P(), vcg::Point3f(100, -0.25f, 0.5f));
+    EXPECT_EQ(ascii.vert[0].N(), vcg::Point3f(5, 3, 16));
+    EXPECT_TRUE(std::isnan(ascii.vert[1].P()[0]) && std::isnan(ascii.vert[1].P()[1]));
+    EXPECT_EQ(ascii.vert[1].P()[2], INFINITY);
+    EXPECT_EQ(ascii.vert[1].N(), vcg::Point3f(-INFINITY, INFINITY, -INFINITY));
+    EXPECT_EQ(ascii.vert[2].P(), vcg::Point3f(INFINITY, -INFINITY, 0.125f));
+    EXPECT_EQ(ascii.vert[2].N(), vcg::Point3f(0, 1, 1));
+    // Ordinary values read as the same file in binary.
+    std::string binary;
+    const float values[] = {0.1f, -3.25e-7f, 12345.678f, 0.f, -0.70710677f, 0.70710677f};
+    std::string row;
+    for (float v : values) {
+        AppendFloat(binary, v, false);
+        char text[32];
+        std::snprintf(text, sizeof text, "%.9g ", v);
+        row += text;
+    }
+    OrientedPointMesh fromAscii, fromBinary;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(Write(Header("ascii", "1") + row + "\n"), fromAscii, error)) << error;
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(Write(Header("binary_little_endian", "1") + binary), fromBinary, error));
+    EXPECT_EQ(fromAscii.vert[0].P(), fromBinary.vert[0].P());
+    EXPECT_EQ(fromAscii.vert[0].N(), fromBinary.vert[0].N());
 }

@@ -31,8 +31,6 @@ constexpr std::size_t kQuoteChars = 35;
 // vcglib copies a TextureFile comment, each `<this>` in it replaced by the file's name, into 255
 // bytes; comments that could come near that are refused.
 constexpr std::size_t kMaxTextureCommentBytes = 200;
-// A face's corners, counted by one byte: ImporterPLY holds 512.
-constexpr long kMaxFaceCorners = 255;
 
 struct ScalarType
 {
@@ -42,14 +40,6 @@ struct ScalarType
 constexpr ScalarType kScalarTypes[] = {{"char", "int8", 1},   {"uchar", "uint8", 1},     {"short", "int16", 2},
                                        {"ushort", "uint16", 2}, {"int", "int32", 4},       {"uint", "uint32", 4},
                                        {"float", "float32", 4}, {"double", "float64", 8}};
-
-/// The first spelling of a PLY scalar type ("int32" -> "int"), empty for an unknown name.
-std::string CanonicalType(const std::string &type)
-{
-    for (const ScalarType &t : kScalarTypes)
-        if (type == t.name || type == t.alias) return t.name;
-    return std::string();
-}
 
 std::string Quote(const std::string &text) { return "'" + surfel_io::printableText(text, kQuoteChars) + "'"; }
 
@@ -283,17 +273,6 @@ bool ReadHeader(std::istream &in, std::uint64_t fileSize, PlyHeader &header, std
     }
 }
 
-/// Whether ImporterPLY reads list `property` of `element` into its 512 face corners: the corner
-/// lists its descriptors name (vertex_indices of int, uint or short items, vertex_index of int
-/// items; their counts are checked to be one byte apart). Every other list it skips.
-bool IsReadCornerList(const HeaderElement &element, const HeaderProperty &property)
-{
-    if (element.name != "face" || !property.isList) return false;
-    const std::string item = CanonicalType(property.type);
-    if (property.name == "vertex_indices") return item == "int" || item == "uint" || item == "short";
-    return property.name == "vertex_index" && item == "int";
-}
-
 /// A list ImporterPLY skips in a binary file goes through a 512-byte buffer, its count read as one
 /// byte whatever its declared type: safe for one-byte counts of items of at most 2 bytes.
 bool CheckSkippedList(const PlyHeader &header, const HeaderElement &element, const HeaderProperty &property,
@@ -443,27 +422,17 @@ bool CheckTextureComments(const PlyHeader &header, const std::string &path, std:
     return true;
 }
 
-/// Reads a body value as plylib does, from `file` at its position (ReadFaceCorners).
+/// Reads a value of a binary body as plylib does, from `file` at its position (CheckFaceCorners).
 class BodyReader
 {
 public:
     BodyReader(std::FILE *file, const PlyHeader &header) : file_(file), header_(header) {}
 
-    /// A scalar plylib stores or skips: false where plylib's read stops the file.
-    bool Scalar(const std::string &type)
-    {
-        if (header_.binary) return Bytes(TypeSize(type), nullptr);
-        // Skipped scalars go on after a value that does not parse, without consuming it.
-        return IsFloatingType(type) ? std::fscanf(file_, "%f", &float_) != EOF : std::fscanf(file_, "%d", &int_) != EOF;
-    }
-    /// A list count: one byte in binary files (signed for char, as stored), an int in ASCII.
+    /// A scalar plylib stores or skips.
+    bool Scalar(const std::string &type) { return Bytes(TypeSize(type), nullptr); }
+    /// A list count: one byte (signed for char, as stored).
     bool Count(const std::string &countType, bool stored, long &count)
     {
-        if (!header_.binary) {
-            if (std::fscanf(file_, "%d", &int_) != 1) return false;
-            count = int_;
-            return true;
-        }
         unsigned char byte;
         if (!Bytes(1, &byte)) return false;
         count = stored && CanonicalType(countType) == "char" ? long(static_cast<signed char>(byte)) : long(byte);
@@ -472,13 +441,6 @@ public:
     /// A face corner as plylib stores it in an int (short items through a short).
     bool Corner(const std::string &type, long long &corner)
     {
-        const std::string canonical = CanonicalType(type);
-        if (!header_.binary) {
-            long long value;
-            if (std::fscanf(file_, "%lld", &value) != 1) return false;
-            corner = canonical == "short" ? static_cast<short>(value) : static_cast<int>(value);
-            return true;
-        }
         unsigned char bytes[4];
         const int size = TypeSize(type);
         if (!Bytes(size, bytes)) return false;
@@ -490,18 +452,15 @@ public:
         corner = size == 2 ? half : word;
         return true;
     }
-    /// Passes over the records of a binary element without lists in one seek.
+    /// Passes over the records of an element without lists in one seek.
     bool SkipFixedRecords(const HeaderElement &element)
     {
         std::uint64_t bytes = 0;
         for (const HeaderProperty &p : element.properties) bytes += std::uint64_t(TypeSize(p.type));
         return ::fseeko(file_, off_t(bytes * element.count), SEEK_CUR) == 0;
     }
-    /// An item of a list plylib skips: read as a float in ASCII.
-    bool SkippedItem(const std::string &type)
-    {
-        return header_.binary ? Bytes(TypeSize(type), nullptr) : std::fscanf(file_, "%f", &float_) == 1;
-    }
+    /// An item of a list plylib skips.
+    bool SkippedItem(const std::string &type) { return Bytes(TypeSize(type), nullptr); }
 
 private:
     bool Bytes(int size, unsigned char *out)
@@ -511,15 +470,13 @@ private:
     }
     std::FILE *file_;
     const PlyHeader &header_;
-    int int_ = 0;
-    float float_ = 0;
 };
 
-/// vcglib reads each face's corners into 512 slots (in ASCII with an int count whatever its
-/// declared type) and indexes its vertices with them unchecked. The records up to the last
-/// element with corners are read here first, each value as plylib reads it: a face of more than
-/// kMaxFaceCorners corners, or a corner that is not a vertex, is refused. Where plylib's own read
-/// would stop, this one stops too and leaves the file to vcglib's error.
+/// vcglib reads each face's corners into 512 slots and indexes its vertices with them
+/// unchecked. In a binary file (the records of an ASCII one are checked by CheckAsciiBody) the
+/// records up to the last element with corners are read here first, each value as plylib reads
+/// it: a corner that is not a vertex is refused (a one-byte count holds at most 255 corners).
+/// Where plylib's own read would stop, this one stops too and leaves the file to vcglib's error.
 bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::string &error)
 {
     std::size_t last = header.elements.size();
@@ -529,7 +486,7 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
         for (const HeaderProperty &p : header.elements[e].properties)
             if (IsReadCornerList(header.elements[e], p)) last = e;
     }
-    if (last == header.elements.size()) return true;
+    if (!header.binary || last == header.elements.size()) return true;
     std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file || ::fseeko(file.get(), off_t(header.bodyOffset), SEEK_SET) != 0) return true;
     BodyReader read(file.get(), header);
@@ -537,8 +494,8 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
         const HeaderElement &element = header.elements[e];
         const bool fixedSize = std::none_of(element.properties.begin(), element.properties.end(),
                                             [](const HeaderProperty &p) { return p.isList; });
-        // Binary records without lists hold no corners: their bytes need no reading (the vertices).
-        if (header.binary && fixedSize) {
+        // Records without lists hold no corners: their bytes need no reading (the vertices).
+        if (fixedSize) {
             if (!read.SkipFixedRecords(element)) return true;
             continue;
         }
@@ -551,11 +508,6 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
                 const bool corners = IsReadCornerList(element, p);
                 long count = 0;
                 if (!read.Count(p.countType, corners, count)) return true;
-                if (corners && count > kMaxFaceCorners) {
-                    error = "face record " + std::to_string(r) + " has " + std::to_string(count) + " corners; at most " +
-                            std::to_string(kMaxFaceCorners) + " are supported";
-                    return false;
-                }
                 for (long i = 0; i < count; ++i) {
                     long long corner = 0;
                     if (!corners) {
@@ -577,6 +529,24 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
 std::string Bounded(const std::string &message) { return surfel_io::printableText(message, kMaxErrorChars); }
 
 } // namespace
+
+std::string CanonicalType(const std::string &type)
+{
+    for (const ScalarType &t : kScalarTypes)
+        if (type == t.name || type == t.alias) return t.name;
+    return std::string();
+}
+
+/// ImporterPLY reads into its 512 face corners the corner lists its descriptors name
+/// (vertex_indices of int, uint or short items, vertex_index of int items; their counts are
+/// checked to be one byte apart). Every other list it skips.
+bool IsReadCornerList(const HeaderElement &element, const HeaderProperty &property)
+{
+    if (element.name != "face" || !property.isList) return false;
+    const std::string item = CanonicalType(property.type);
+    if (property.name == "vertex_indices") return item == "int" || item == "uint" || item == "short";
+    return property.name == "vertex_index" && item == "int";
+}
 
 int TypeSize(const std::string &type)
 {
@@ -621,6 +591,10 @@ bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointM
     typedef vcg::tri::io::ImporterPLY<vcg::gaussphere::OrientedPointMesh> Importer;
     PlyHeader header;
     if (!ReadOrientedPointHeader(path, header, error)) return false;
+    if (!header.binary && !CheckAsciiBody(path, header, error)) {
+        error = Bounded(error);
+        return false;
+    }
 
     int mask = 0;
     int status = 0;

@@ -47,11 +47,27 @@ struct PlyHeader
 /// Bytes of one value of a PLY scalar type (both spellings), 0 for an unknown name.
 int TypeSize(const std::string &type);
 bool IsFloatingType(const std::string &type);
+/// The first spelling of a PLY scalar type ("int32" -> "int"), empty for an unknown name.
+std::string CanonicalType(const std::string &type);
+/// Whether vcglib's ImporterPLY reads list `property` of `element` as face corners (vertex indices).
+bool IsReadCornerList(const HeaderElement &element, const HeaderProperty &property);
 
 /// Reads the header of `path` and checks what ReadOrientedPoints needs: a vertex element with
-/// float or double x y z nx ny nz and no lists, and a body at least as long as the counts
-/// announce. On failure returns false with `error` as ReadOrientedPoints gives it.
+/// float or double x y z nx ny nz and no lists, a body at least as long as the counts announce,
+/// and in a binary file face corners that are vertices. The records of an ASCII body are
+/// checked by CheckAsciiBody. On failure returns false with `error` as ReadOrientedPoints gives it.
 bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::string &error);
+
+/// Checks the body of an ASCII file whose header ReadOrientedPointHeader read, streaming it:
+/// the records of every element in header order, one a line (line ends "\n" or "\r\n"),
+/// their values separated by spaces or tabs, exactly as many as the properties take (a list: its
+/// count, then that many items), each a whole number of its property's type: a decimal integer in
+/// the type's range for integer types; for float and double a decimal or hexadecimal number
+/// (1e999 reads as infinity) or nan, inf, infinity in any case, optionally signed. A list count
+/// is not negative, a face corner names a vertex. Blank lines are passed over between the records
+/// and after the last one; anything else after it is refused. On failure returns false with
+/// `error` naming the line, the record ("vertex 12", counted from 0), the property and the text.
+bool CheckAsciiBody(const std::string &path, const PlyHeader &header, std::string &error);
 
 /// Reads an oriented point set (x y z nx ny nz per vertex) from a PLY file. On failure returns false and
 /// sets `error` to one line (at most 200 characters, printable ASCII only) naming the reason.
