@@ -93,6 +93,9 @@ inline std::vector<LogLine> RunLog(const vcg::gaussphere::ResamplingStats &s)
                                         s.pointsAboveErrorBound, s.surfaceErrorMax * s.diagonal, s.surfaceErrorMax,
                                         s.ErrorBoundMissReason().c_str())});
     }
+    if (s.coincidentPoints > 0)
+        log.push_back({false, Format("Gaussian sphere resampling: %d point(s) lie at the position of another point "
+                                     "facing the same side and count once, in its surfel", s.coincidentPoints)});
     if (s.skippedNormals > 0)
         log.push_back({true, Format("Gaussian sphere resampling skipped %d point(s) with a zero or invalid normal",
                                     s.skippedNormals)});

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -147,6 +148,58 @@ TEST(ResamplingInputs, FortyCopiesOfOnePoint)
     EXPECT_EQ(r.surfels[0].position, P3(1, 2, 3));
     EXPECT_NEAR(r.surfels[0].normal[1], 1, 1e-6);
     gstest::ExpectValidResult(r, s);
+}
+
+// Copies of every point (a scan merged with itself) change nothing but the member counts: the
+// same surfels, each also representing its points' copies, at the level, at a target and spread
+// evenly.
+TEST(ResamplingInputs, CopiesOfEveryPointCountOnce)
+{
+    const gstest::PointSet once = gstest::FibonacciSphere(3000);
+    const int n = once.Size();
+    gstest::PointSet thrice;
+    for (int copy = 0; copy < 3; ++copy)
+        for (int i = 0; i < n; ++i) thrice.Add(once.points[i], once.normals[i]);
+    ResamplingParams level, target, even;
+    target.targetCount = 300;
+    even.spreadEvenly = true;
+    for (const ResamplingParams &p : {level, target, even}) {
+        const ResamplingResult r1 = gstest::Resample(once, p), r3 = gstest::Resample(thrice, p);
+        gstest::ExpectValidResult(r3, thrice);
+        EXPECT_EQ(r1.stats.coincidentPoints, 0);
+        EXPECT_EQ(r3.stats.coincidentPoints, 2 * n);
+        ASSERT_EQ(r3.surfels.size(), r1.surfels.size());
+        for (size_t c = 0; c < r1.surfels.size(); ++c) {
+            const Surfel &a = r1.surfels[c], &b = r3.surfels[c];
+            EXPECT_TRUE(a.position == b.position && a.normal == b.normal && a.majorAxis == b.majorAxis &&
+                        a.minorAxis == b.minorAxis) << "surfel " << c;
+            EXPECT_EQ(b.memberCount, 3 * a.memberCount) << "surfel " << c;
+        }
+        for (int i = 0; i < 3 * n; ++i) EXPECT_EQ(r3.representative[i], r1.representative[i % n]) << "vertex " << i;
+    }
+}
+
+// Points at one position facing opposite sides (the two sides of a thin part) stay apart; copies
+// facing one side with different normals become one point with their mean normal.
+TEST(ResamplingInputs, CoincidentPointsMergeOnlyFacingOneSide)
+{
+    const gstest::PointSet plane = gstest::PlaneGrid(30, 30, 0.1f);
+    gstest::PointSet sheet = plane; // the same points seen from below
+    for (int i = 0; i < plane.Size(); ++i) sheet.Add(plane.points[i], P3(0, 0, -1));
+    const ResamplingResult twoSided = gstest::Resample(sheet);
+    gstest::ExpectValidResult(twoSided, sheet);
+    EXPECT_EQ(twoSided.stats.coincidentPoints, 0);
+    for (int i = 0; i < plane.Size(); ++i)
+        EXPECT_NE(twoSided.representative[i], twoSided.representative[i + plane.Size()]) << "point " << i;
+
+    gstest::PointSet tilted = plane; // copies whose normals lean 10 degrees to either side
+    const float lean = std::sin(10 * float(M_PI) / 180), up = std::cos(10 * float(M_PI) / 180);
+    for (int i = 0; i < plane.Size(); ++i) tilted.Add(plane.points[i], P3(lean, 0, up));
+    for (int i = 0; i < plane.Size(); ++i) tilted.Add(plane.points[i], P3(-lean, 0, up));
+    const ResamplingResult merged = gstest::Resample(tilted);
+    gstest::ExpectValidResult(merged, tilted);
+    EXPECT_EQ(merged.stats.coincidentPoints, 2 * plane.Size());
+    for (const Surfel &s : merged.surfels) EXPECT_NEAR(s.normal[2], 1.f, 1e-6f); // the mean of up, +lean and -lean
 }
 
 // Fewer points than k: every point sees all others. (On a single row every point is a rim point,

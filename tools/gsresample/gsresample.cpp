@@ -159,12 +159,12 @@ bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, Or
 void PrintFigures(const ResamplingStats &s)
 {
     std::printf("input %d skipped %d output %d (%.2f%%) naive %d iterations %d neighbours %.1f L21 %.4f/%.3f level %d "
-                "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.3g -> %.3g) crease-narrowed %d rim %d stray-splits %d halvings %d above-bound %d (max %.3g) | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
+                "(%d tried) splits %d+%d+%d merges %d exchanges %d/%d (max %.3g -> %.3g) crease-narrowed %d rim %d stray-splits %d halvings %d above-bound %d (max %.3g) coincident %d | time %.3f s (neighbours %.3f propagation %.3f normalization %.3f "
                 "refinement %.3f surfels %.3f exchanges %.3f)\n",
                 s.inputCount, s.skippedCount, s.outputCount, 100.0 * s.outputCount / s.inputCount, s.naiveCount,
                 s.iterations, s.meanAdaptiveNeighbors, s.normalErrorRms, s.normalErrorMax, s.levelUsed, s.levelsTried, s.splitsForErrorBound,
                 s.splitsForSurfaceBound, s.splitsForTarget, s.mergesForTarget, s.exchangesForMaxError, s.exchangeTrials,
-                s.exchangeMaxBefore, s.exchangeMaxAfter, s.surfelsNarrowedAtCreases, s.rimPoints, s.straySplits, s.narrowingsForSurfaceBound, s.pointsAboveErrorBound, s.surfaceErrorMax, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
+                s.exchangeMaxBefore, s.exchangeMaxAfter, s.surfelsNarrowedAtCreases, s.rimPoints, s.straySplits, s.narrowingsForSurfaceBound, s.pointsAboveErrorBound, s.surfaceErrorMax, s.coincidentPoints, s.TotalSeconds(), s.secondsNeighbors, s.secondsPropagation,
                 s.secondsNormalization, s.secondsRefinement, s.secondsSurfels, s.secondsExchanges);
 }
 

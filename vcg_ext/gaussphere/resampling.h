@@ -33,9 +33,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <omp.h>
@@ -75,6 +77,7 @@ constexpr int kSurfaceBoundRounds = 16;
 struct ResamplingStats
 {
     int inputCount = 0;            ///< vertices examined (deleted ones excluded)
+    int coincidentPoints = 0;      ///< usable points at the exact position of another: each set counts once
     int skippedCount = 0;          ///< vertices without a usable normal or position: the sum of
     int skippedPositions = 0;      ///< ... those whose position is not finite in float
     int skippedNormals = 0;        ///< ... and those with a finite position and a zero or non-finite normal
@@ -121,8 +124,10 @@ struct ResamplingStats
     std::string TargetMissReason() const
     {
         if (sizeMode != SizeControl::TargetCount || outputCount == targetCount) return std::string();
-        if (outputCount < targetCount && targetCount > inputCount - skippedCount)
-            return "the input has only " + std::to_string(inputCount - skippedCount) + " usable point(s)";
+        const int distinct = inputCount - skippedCount - coincidentPoints;
+        if (outputCount < targetCount && targetCount > distinct)
+            return "the input has only " + std::to_string(distinct) + " usable point(s)" +
+                   (coincidentPoints > 0 ? " at distinct positions" : "");
         return outputCount < targetCount ? "no cluster left to split" : "no neighbouring clusters left to merge";
     }
     /// The round cap, not a lack of clusters left to split, left points beyond the bound.
@@ -255,6 +260,9 @@ struct Run
     StageTimer timer;
     PointArray points, normals;
     IndexArray source;
+    /// (vertex, point) per usable vertex at the position of a point that stands for it
+    /// (MergeCoincidentPoints); the vertex joins that point's surfel.
+    std::vector<std::pair<int, int>> coincident;
     NeighborGraph graph;
     IndexArray seedOrder;   ///< of index propagation (seed_order.h)
     FlatVector<char> limited; ///< per point: at a crease or on the rim, where clusters are kept small
@@ -307,6 +315,59 @@ void ReadPoints(const MeshType &mesh, Run &run)
     run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
 }
 
+/// True when two points have the same coordinates, bit for bit (as the Morton order compares them).
+inline bool SamePosition(const vcg::Point3f &a, const vcg::Point3f &b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Coincident points facing one side count once. Copies of a point (merged scans, repeated
+/// exports) would fill each other's k nearest neighbours and keep apart the clusters that one copy
+/// of each would join, so the result would depend on how often a point was copied. In Morton order
+/// the copies of a position are consecutive, by vertex index. Each copy joins the first earlier
+/// copy whose normal is less than 90 degrees from its own (opposite normals at one position are two
+/// sides of a thin part, and stay apart); the point kept takes the normalized sum of its copies'
+/// normals, and the others are listed in run.coincident, to join its surfel at the end (Finish).
+/// When every point lies at one position there is nothing to merge them into: they stay as they
+/// are, and make one surfel.
+inline void MergeCoincidentPoints(Run &run)
+{
+    const int n = int(run.points.size());
+    int copies = 0;
+#pragma omp parallel for schedule(static) reduction(+ : copies)
+    for (int i = 1; i < n; ++i) copies += SamePosition(run.points[i], run.points[i - 1]);
+    if (copies == 0 || copies == n - 1) return;
+    int kept = 0;
+    struct Head
+    {
+        int point;           ///< the index it is kept at
+        vcg::Point3f normal; ///< its own normal
+        vcg::Point3d sum;    ///< the sum of its copies' normals, its own included
+        bool mixed;          ///< some copy's normal differs from its own
+    };
+    std::vector<Head> heads; // the points kept at one position
+    for (int first = 0, end = 0; first < n; first = end) {
+        heads.clear();
+        for (end = first; end < n && SamePosition(run.points[end], run.points[first]); ++end) {
+            const vcg::Point3f normal = run.normals[end];
+            auto head = std::find_if(heads.begin(), heads.end(), [&](const Head &h) { return h.normal.dot(normal) > 0; });
+            if (head != heads.end()) {
+                head->sum += vcg::Point3d::Construct(normal);
+                head->mixed = head->mixed || !(normal == head->normal);
+                run.coincident.emplace_back(run.source[end], head->point);
+                continue;
+            }
+            heads.push_back(Head{kept, normal, vcg::Point3d::Construct(normal), false});
+            run.points[kept] = run.points[end];
+            run.source[kept] = run.source[end];
+            ++kept;
+        }
+        for (const Head &head : heads)
+            run.normals[head.point] = head.mixed ? vcg::Point3f::Construct(head.sum / head.sum.Norm()) : head.normal;
+    }
+    run.points.resize(kept);
+    run.normals.resize(kept);
+    run.source.resize(kept);
+    run.stats.coincidentPoints = n - kept;
+}
+
 /// Step 1: the points renumbered along the Morton curve of their own coordinates
 /// (morton_order.h: points close in space become close in memory, which makes every later pass
 /// cache-friendly; the order breaks every tie, and it is the same for a part of an input
@@ -327,6 +388,7 @@ inline void FindNeighbors(Run &run)
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < int(order.size()); ++i) order[i] = run.source[order[i]];
     run.source.swap(order);
+    MergeCoincidentPoints(run);
     run.seedOrder = SeedOrder(run.points, run.param.tuning.seedSalt);
     vcg::CallBackPos *cb = run.cb;
     std::unique_ptr<PointGrid> grid(
@@ -585,6 +647,7 @@ inline std::vector<Surfel> ResampleToCount(Run &run, ResamplingResult &result)
     if (merged && recorded) {
         record.levelRepresentative.assign(result.representative.size(), -1);
         for (size_t i = 0; i < run.points.size(); ++i) record.levelRepresentative[run.source[i]] = run.clusters.label[i];
+        for (const auto &c : run.coincident) record.levelRepresentative[c.first] = run.clusters.label[c.second];
     }
     if (merged) mergedLinks = MergeClustersToCount(run, target, recorded ? &record.merges : nullptr);
     return SurfelsAtCount(run, maker, merged ? &mergedLinks : nullptr, result);
@@ -676,6 +739,11 @@ inline void Finish(Run &run, ResamplingResult &result)
     for (int i = 0; i < n; ++i) {
         result.representative[run.source[i]] = run.clusters.label[i];
         normalError[i] = (run.normals[i] - result.surfels[run.clusters.label[i]].normal).Norm();
+    }
+    for (const auto &c : run.coincident) {
+        const int label = run.clusters.label[c.second];
+        result.representative[c.first] = label;
+        ++result.surfels[label].memberCount;
     }
     double sumSquares = 0; // summed in point order: the same figure for any thread count
     for (double e : normalError) {
