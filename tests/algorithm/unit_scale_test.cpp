@@ -139,6 +139,24 @@ TEST(UnitScale, SurfelsBeyondTheFloatRangeAreAnError)
     }
 }
 
+// A small model near the end of the float range: its surfels overflow there, and the message
+// names the distance from the origin, not the size, as the cause.
+TEST(UnitScale, SurfelsOfAFarSmallModelNameItsDistance)
+{
+    // A unit sphere's points and normals, flattened onto the plane x = 3e38: the surfels' fitted
+    // offsets along the normals carry them past the largest float.
+    const gstest::PointSet sphere = gstest::FibonacciSphere(500);
+    gstest::PointSet far;
+    for (int i = 0; i < sphere.Size(); ++i)
+        far.Add(P3(3e38f, sphere.points[i][1], sphere.points[i][2]), sphere.normals[i]);
+    try {
+        gstest::Resample(far);
+        ADD_FAILURE() << "no exception for surfels beyond the float range";
+    } catch (const std::overflow_error &e) {
+        EXPECT_NE(std::string(e.what()).find("move the model towards the origin"), std::string::npos) << e.what();
+    }
+}
+
 TEST(UnitScale, PositionsAndNormalsAreCountedApart)
 {
     gstest::PointSet s = gstest::FibonacciSphere(1000);

@@ -216,12 +216,19 @@ inline std::string TooFewPointsMessage(const UsablePointCounts &counts)
     return message;
 }
 
-inline std::string OverflowMessage(double diagonal)
+/// Why the surfels do not fit in float at the model's scale: the model's size, or its distance
+/// from the origin (`farthest`, the largest coordinate's magnitude) when that is what is large.
+inline std::string OverflowMessage(double diagonal, double farthest)
 {
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "the surfels of this model do not fit in float coordinates (bounding-box diagonal %.3g): "
-                  "scale the model down", diagonal);
+    char text[200];
+    if (farthest > 1e3 * diagonal)
+        std::snprintf(text, sizeof text,
+                      "the surfels of this model do not fit in float coordinates (a coordinate of %.3g, bounding-box "
+                      "diagonal %.3g): move the model towards the origin", farthest, diagonal);
+    else
+        std::snprintf(text, sizeof text,
+                      "the surfels of this model do not fit in float coordinates (bounding-box diagonal %.3g): "
+                      "scale the model down", diagonal);
     return text;
 }
 
@@ -268,6 +275,7 @@ struct Run
     FlatVector<char> limited; ///< per point: at a crease or on the rim, where clusters are kept small
     double scale = 1;       ///< unit scale = scale x the model's
     double diagonal = 0;    ///< of the points, at unit scale
+    double farthest = 0;    ///< the largest magnitude of a coordinate, at the model's scale
     double weightWidth = 0; ///< h of the surfel normal weights, at unit scale
     ClusterNormalizationParams normalization;
     Clustering clusters;
@@ -307,6 +315,8 @@ void ReadPoints(const MeshType &mesh, Run &run)
     if (counts.usable < 2) throw std::invalid_argument(TooFewPointsMessage(counts));
     vcg::Box3f box;
     for (const auto &p : run.points) box.Add(p);
+    for (int d = 0; d < 3; ++d)
+        run.farthest = std::max({run.farthest, std::abs(double(box.min[d])), std::abs(double(box.max[d]))});
     const UnitScaleBox unit = MeasureUnitScale(box);
     run.scale = unit.scale;
     ScalePoints(run.scale, run.points);
@@ -751,7 +761,7 @@ inline void Finish(Run &run, ResamplingResult &result)
         stats.normalErrorMax = std::max(stats.normalErrorMax, e);
     }
     stats.normalErrorRms = std::sqrt(sumSquares / n);
-    if (!ScaleSurfels(1.0 / run.scale, result.surfels)) throw std::overflow_error(OverflowMessage(stats.diagonal));
+    if (!ScaleSurfels(1.0 / run.scale, result.surfels)) throw std::overflow_error(OverflowMessage(stats.diagonal, run.farthest));
     stats.outputCount = int(result.surfels.size());
     stats.secondsSurfels = run.timer.Lap();
 }
