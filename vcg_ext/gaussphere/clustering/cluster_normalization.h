@@ -13,11 +13,10 @@
 // beside a crease a wide surfel rounds the edge off, and an elongated one lying along the
 // edge reaches far across it.
 //
-// The paper repeats normalization and rejoining until the count changes by less than 1 % of
-// the points. That rule counts the whole input, so the same model would be normalized
-// differently beside other data, or in tiles; here rounds run until one splits nothing, at
-// most maxRounds (the resampler's 6: on its benchmark models the count no longer changes
-// after that, and the later rounds only split clusters whose lone split-off point rejoins them).
+// As in the paper, normalization and rejoining repeat until the clusters meet the criterion: a
+// round splits nothing. The rounds stop at maxRounds too (the resampler's 6: on its benchmark
+// models the count no longer changes after that, and the later rounds only split clusters whose
+// lone split-off point rejoins them).
 #ifndef VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 #define VCG_EXT_GAUSSPHERE_CLUSTER_NORMALIZATION_H
 
