@@ -238,7 +238,7 @@ inline const std::vector<ParameterSpec> &ParameterTable()
         {"MaxClusterSize", "--max-cluster-size", "Largest cluster", ParameterKind::Int, 32, 0, unbounded, false,
          false, ParameterAudience::Expert,
          "Clusters of more points are split whatever their shape (0 = off); lower caps give more, smaller surfels "
-         "on flat parts (below 8, a few clusters that lone points rejoin stay above the cap).",
+         "on flat parts; caps below 8 are approximate (lone points rejoin clusters after the splits).",
          [](const P &p) { return double(p.tuning.maxClusterSize); },
          [](P &p, double v) { p.tuning.maxClusterSize = int(v); }},
         {"MaxErrorExchanges", "--exchanges", "Exchanges for the largest error", ParameterKind::Int, 16, 0, 100000,
