@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -22,11 +23,11 @@ std::string contents(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// A fresh folder for one test.
+// A new, empty folder for one test (a rerun gets another).
 std::string folderFor(const std::string& test) {
-  const std::string folder = testing::TempDir() + "file_replacement_" + test;
-  ::mkdir(folder.c_str(), 0700);
-  return folder + "/";
+  std::string name = testing::TempDir() + "file_replacement_" + test + "_XXXXXX";
+  if (::mkdtemp(&name[0]) == nullptr) ADD_FAILURE() << "cannot make a folder like " << name;
+  return name + "/";
 }
 
 TEST(FileReplacement, ReplacesTheTargetOnlyOnCommitAndKeepsItsPermissions) {
