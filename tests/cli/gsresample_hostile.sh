@@ -44,16 +44,16 @@ expect 2 "--level: expected an integer between 2 and 256, got '8x'" missing.ply 
 expect 2 "--level needs a value" missing.ply out.surfel --level
 expect 2 "--level is given twice" missing.ply out.surfel --level 8 --level 9
 expect 2 "--target: expected an integer between 0 and 2147483647, got '-5' (out of range)" missing.ply out.surfel --target -5
-expect 2 "--threshold: expected a number of at least 1, got 'nan'" missing.ply out.surfel --threshold nan
-expect 2 "--max-error: expected a number between 0 and 1, got '0.01;'" missing.ply out.surfel --max-error '0.01;'
+expect 2 "--threshold: expected a number above 1, got 'nan'" missing.ply out.surfel --threshold nan
+expect 2 "--max-error: expected a number at least 0 and below 1, got '0.01;'" missing.ply out.surfel --max-error '0.01;'
 expect 2 "--percentage: expected a number between 0 and 100, got '150' (out of range)" missing.ply out.surfel --percentage 150
 expect 2 "--fit-offsets: expected one of 0|1, got 'yes'" missing.ply out.surfel --fit-offsets yes
 expect 2 "unknown option '--levle'" missing.ply out.surfel --levle 8
 expect 2 "expected INPUT.ply and OUTPUT.ply|OUTPUT.surfel" missing.ply
 expect 2 "unexpected argument 'extra'" missing.ply out.surfel extra
 expect 2 "unknown option '--crease-blend'" missing.ply out.surfel --crease-blend 0.5
-expect 2 "--threshold: expected a value above 1, got '1'" missing.ply out.surfel --threshold 1
-expect 2 "--max-error: expected a value at least 0 and below 1, got '1'" missing.ply out.surfel --max-error 1
+expect 2 "--threshold: expected a number above 1, got '1' (out of range)" missing.ply out.surfel --threshold 1
+expect 2 "--max-error: expected a number at least 0 and below 1, got '1' (out of range)" missing.ply out.surfel --max-error 1
 
 status=0
 "$GSRESAMPLE" --help >help.log 2>&1 || status=$?

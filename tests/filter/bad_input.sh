@@ -80,7 +80,7 @@ gsresample_fails() {
 gsresample_fails 1 missing.ply out_missing.surfel "cannot read missing.ply"
 gsresample_fails 1 no_normals.ply out_no_normals.surfel "no per-vertex normals"
 gsresample_fails 1 one.ply out_one.surfel "at least 2"
-gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_threshold.surfel "--threshold: expected a value above 1" --threshold 1
+gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_threshold.surfel "--threshold: expected a number above 1, got '1' (out of range)" --threshold 1
 gsresample_fails 2 "$SAMPLE_DIR/fandisk.ply" out_exchanges.surfel "--exchanges: expected an integer between 0 and 100000" --target 100 --exchanges -3
 gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.surfel "cannot write no_such_folder/out.surfel"
 gsresample_fails 1 "$SAMPLE_DIR/fandisk.ply" no_such_folder/out.ply "cannot write no_such_folder/out.ply"

@@ -32,10 +32,14 @@ bool SetOption(const ParameterSpec &spec, const std::string &value, ResamplingPa
         if (!ParseInt(value, int(spec.min), max, integer, error)) return false;
         number = integer;
     } else if (!ParseDouble(value, spec.min, spec.max, number, error)) {
+        // In the table's words for the range, open bounds included ("above 1").
+        const bool outOfRange = error.find("(out of range)") != std::string::npos;
+        error = "expected a number " + spec.RangeText() + ", got " + Quoted(value) + (outOfRange ? " (out of range)" : "");
         return false;
     }
     if (!spec.Accepts(number)) {
-        error = "expected a value " + spec.RangeText() + ", got " + Quoted(value);
+        error = std::string(spec.kind == ParameterKind::Int ? "expected an integer " : "expected a number ") +
+                spec.RangeText() + ", got " + Quoted(value) + " (out of range)";
         return false;
     }
     spec.set(param, number);
