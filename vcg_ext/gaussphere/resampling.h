@@ -331,7 +331,7 @@ inline bool SamePosition(const vcg::Point3f &a, const vcg::Point3f &b) { return 
 /// Coincident points facing one side count once. Copies of a point (merged scans, repeated
 /// exports) would fill each other's k nearest neighbours and keep apart the clusters that one copy
 /// of each would join, so the result would depend on how often a point was copied. In Morton order
-/// the copies of a position are consecutive, by vertex index. Each copy joins the first earlier
+/// the copies of a position are consecutive, by vertex index. Each copy joins the first preceding
 /// copy whose normal is less than 90 degrees from its own (opposite normals at one position are two
 /// sides of a thin part, and stay apart); the point kept takes the normalized sum of its copies'
 /// normals, and the others are listed in run.coincident, to join its surfel at the end (Finish).
