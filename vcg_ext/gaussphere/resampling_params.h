@@ -63,7 +63,7 @@ struct ResamplingParams
     // Size control: the error bound, else the target count, else the target percentage, else the level.
     int subdivisionLevel = 8;      ///< n of the Gaussian sphere; with a target, the level its search starts from
     int targetCount = 0;           ///< exact number of surfels (0 = off)
-    double targetPercentage = 0;   ///< exact number of surfels as a percentage of the usable points (0 = off)
+    double targetPercentage = 0;   ///< exact number of surfels as a percentage of the usable points, copies counted once (0 = off)
     double maxErrorFraction = 0;   ///< bound on each point's distance to the surfels' blended surface, as a
                                    ///< fraction of the bounding-box diagonal (0 = off)
     // Shape of the result.
@@ -193,7 +193,8 @@ inline const std::vector<ParameterSpec> &ParameterTable()
         {"TargetPercentage", "--percentage", "Target percentage", ParameterKind::Float, 0, 0, 100, false, false,
          ParameterAudience::Everyone,
          "Exact number of surfels as a percentage of the usable input points, those with a finite position and a "
-         "finite, non-zero normal (0 = off), e.g. 10 for one surfel per ten points; overrides the level.",
+         "finite, non-zero normal, copies of a point counted once (0 = off), e.g. 10 for one surfel per ten "
+         "points; overrides the level.",
          [](const P &p) { return p.targetPercentage; }, [](P &p, double v) { p.targetPercentage = v; }},
         {"MaxError", "--max-error", "Maximum error (fraction of diagonal)", ParameterKind::Float, 0, 0, 1, false, true,
          ParameterAudience::Everyone,
