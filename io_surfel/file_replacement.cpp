@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <random>
 
 #include <fcntl.h>
@@ -16,8 +17,6 @@
 namespace surfel_io {
 
 namespace {
-
-std::string quotedPath(const std::string& path) { return "'" + printableText(path, 100, true) + "'"; }
 
 bool fail(std::string& error, const std::string& path, const std::string& reason) {
   error = printableText("cannot write " + quotedPath(path) + ": " + reason, 200);
@@ -54,6 +53,7 @@ FileReplacement::~FileReplacement() {
 
 bool FileReplacement::open(const std::string& path, std::string& error) {
   if (path.empty()) return fail(error, path, "the path is empty");
+  path_ = path;
   target_ = resolvedTarget(path);
   struct stat existing;
   const bool exists = ::stat(target_.c_str(), &existing) == 0;
@@ -85,6 +85,19 @@ bool FileReplacement::commit(std::string& error) {
   if (std::rename(writePath_.c_str(), target_.c_str()) != 0) return fail(error, target_, std::strerror(errno));
   pending_ = false;
   return true;
+}
+
+bool FileReplacement::write(const std::function<bool(std::ostream&, std::string&)>& writeData, std::string& error) {
+  std::ofstream out(writePath_, std::ios::binary | std::ios::trunc);
+  if (!out) return fail(error, path_, std::strerror(errno));
+  error.clear();
+  if (!writeData(out, error)) {
+    if (error.empty()) fail(error, path_, std::strerror(errno));
+    return false;
+  }
+  out.close();
+  if (!out) return fail(error, path_, std::strerror(errno));
+  return commit(error);
 }
 
 }  // namespace surfel_io

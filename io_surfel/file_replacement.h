@@ -4,6 +4,8 @@
 #ifndef GAUSSPHERE_IO_SURFEL_FILE_REPLACEMENT_H
 #define GAUSSPHERE_IO_SURFEL_FILE_REPLACEMENT_H
 
+#include <functional>
+#include <ostream>
 #include <string>
 
 namespace surfel_io {
@@ -29,9 +31,12 @@ class FileReplacement {
   // Renames the temporary file over the target; an existing target's permission bits carry
   // over. Nothing to do when written in place.
   bool commit(std::string& error);
+  // Writes the data through `writeData` to writePath(), then commits. On failure, `error` is
+  // writeData's reason, else "cannot write '<path>': <the system's reason>".
+  bool write(const std::function<bool(std::ostream&, std::string&)>& writeData, std::string& error);
 
  private:
-  std::string target_, writePath_;
+  std::string path_, target_, writePath_;
   bool inPlace_ = false, pending_ = false;
 };
 

@@ -38,6 +38,9 @@ inline std::string printableText(const std::string& text, std::size_t maxLength,
   return result;
 }
 
+// A path quoted in a message, its end (the file name) kept.
+inline std::string quotedPath(const std::string& path) { return "'" + printableText(path, 100, true) + "'"; }
+
 }  // namespace surfel_io
 
 #endif

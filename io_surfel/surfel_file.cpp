@@ -166,9 +166,6 @@ bool checkGeometry(const std::vector<SurfelRecord>& surfels, std::string& error)
   return true;
 }
 
-// A path quoted in a reason, its end (the file name) kept.
-std::string quotedPath(const std::string& path) { return "'" + printableText(path, 100, true) + "'"; }
-
 // A header line or word quoted in a reason: short enough to leave room for the explanation.
 std::string quoted(const std::string& text) { return "'" + printableText(text, 60) + "'"; }
 
@@ -355,16 +352,11 @@ bool writeSurfels(std::ostream& out, const std::vector<SurfelRecord>& surfels, s
 
 bool writeSurfelFile(const std::string& path, const std::vector<SurfelRecord>& surfels,
                      std::string& error) {
-  // Through a FileReplacement: a failed save leaves the previous file intact and no partial one.
   if (!checkGeometry(surfels, error)) return false;
   FileReplacement replacement;
-  if (!replacement.open(path, error)) return false;
-  std::ofstream out(replacement.writePath(), std::ios::binary | std::ios::trunc);
-  if (!out) return fail(error, "cannot write " + quotedPath(path) + ": " + std::strerror(errno));
-  if (!writeSurfels(out, surfels, error)) return false;
-  out.close();
-  if (!out) return fail(error, "cannot write " + quotedPath(path) + ": " + std::strerror(errno));
-  return replacement.commit(error);
+  return replacement.open(path, error) &&
+         replacement.write([&](std::ostream& out, std::string& reason) { return writeSurfels(out, surfels, reason); },
+                           error);
 }
 
 bool hasBlendScales(const std::vector<SurfelRecord>& surfels) {

@@ -11,10 +11,7 @@
 // and the output appears only when complete (io_surfel/file_replacement.h); an output that is
 // the input file is refused.
 #include <cctype>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -137,20 +134,15 @@ bool SameFile(const std::string &a, const std::string &b)
 bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, OrientedPointMesh &surfels,
                  std::string &error)
 {
-    std::string reason;
     if (IsSurfelPath(path)) {
-        std::ofstream out(output.writePath(), std::ios::binary | std::ios::trunc);
-        if (out) surfel_io::writeSurfels(out, surfel_io::recordsFromMesh(surfels), reason);
-        if (out) out.close();
-        if (!out && reason.empty()) reason = std::strerror(errno);
-    } else {
-        const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
-                             vcg::tri::io::Mask::IOM_VERTQUALITY;
-        if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(surfels, output.writePath().c_str(), saveMask, true) != 0)
-            reason = "the PLY writer failed";
+        const std::vector<surfel_io::SurfelRecord> records = surfel_io::recordsFromMesh(surfels);
+        return output.write([&](std::ostream &out, std::string &reason) { return surfel_io::writeSurfels(out, records, reason); },
+                            error);
     }
-    if (!reason.empty()) {
-        error = "cannot write " + PathText(path) + ": " + reason;
+    const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
+                         vcg::tri::io::Mask::IOM_VERTQUALITY;
+    if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(surfels, output.writePath().c_str(), saveMask, true) != 0) {
+        error = "cannot write " + PathText(path) + ": the PLY writer failed";
         return false;
     }
     return output.commit(error);

@@ -70,15 +70,7 @@ bool WriteAtomically(const std::string &path, const std::function<bool(std::ostr
                      std::string &error)
 {
     surfel_io::FileReplacement replacement;
-    if (!replacement.open(path, error)) return false;
-    std::ofstream out(replacement.writePath(), std::ios::binary | std::ios::trunc);
-    error.clear();
-    bool written = out && write(out, error);
-    out.close();
-    written = written && !out.fail();
-    if (written) return replacement.commit(error);
-    if (error.empty()) error = "cannot write " + path + ": " + std::strerror(errno);
-    return false;
+    return replacement.open(path, error) && replacement.write(write, error);
 }
 
 } // namespace gstile
