@@ -102,6 +102,8 @@ inline std::vector<LogLine> RunLog(const vcg::gaussphere::ResamplingStats &s)
     if (s.skippedPositions > 0)
         log.push_back({true, Format("Gaussian sphere resampling skipped %d point(s) with a non-finite position",
                                     s.skippedPositions)});
+    const std::string coarse = s.CoarsePositionsReason();
+    if (!coarse.empty()) log.push_back({true, "Gaussian sphere resampling: " + coarse});
     return log;
 }
 

@@ -157,6 +157,29 @@ TEST(UnitScale, SurfelsOfAFarSmallModelNameItsDistance)
     }
 }
 
+// Coordinates far from the origin are held in coarse float steps: the run says so, with the
+// distance and the step, and stays quiet for the same model near the origin or a few diagonals
+// away.
+TEST(UnitScale, CoarseFloatCoordinatesAreReported)
+{
+    const gstest::PointSet sphere = gstest::FibonacciSphere(2000); // diagonal 2 sqrt 3
+    const auto shifted = [&sphere](float offset) {
+        gstest::PointSet s = sphere;
+        for (P3 &p : s.points) p += P3(offset, 0, 0);
+        return s;
+    };
+    EXPECT_EQ(gstest::Resample(sphere).stats.CoarsePositionsReason(), "");
+    EXPECT_EQ(gstest::Resample(shifted(100)).stats.CoarsePositionsReason(), "");
+    // At 4e6 (a georeferenced scan's northing) floats step by 0.25: 1/14 of this diagonal.
+    const ResamplingStats far = gstest::Resample(shifted(4e6f)).stats;
+    EXPECT_DOUBLE_EQ(far.farthestCoordinate, double(4e6f + 1.0f));
+    const std::string reason = far.CoarsePositionsReason();
+    EXPECT_NE(reason.find("up to 4000001 units from the origin"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("steps of 0.25"), std::string::npos) << reason;
+    EXPECT_DOUBLE_EQ(FloatStepAt(4e6), 0.25);
+    EXPECT_DOUBLE_EQ(FloatStepAt(-1.0), std::ldexp(1.0, -23));
+}
+
 TEST(UnitScale, PositionsAndNormalsAreCountedApart)
 {
     gstest::PointSet s = gstest::FibonacciSphere(1000);

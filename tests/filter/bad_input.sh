@@ -60,6 +60,21 @@ PY
 "$SURFEL_CHECK" duplicates.surfel --min-count 100 --require-ellipses --quality-sum $((6475 * 3 + 40))
 echo "ok: duplicate points"
 
+# A scan in georeferenced coordinates (UTM metres): MeshLab holds them in float, in steps of
+# 0.25 m there; the run completes and its log says the positions are coarse, and why.
+python3 - "$SAMPLE_DIR/fandisk.ply" <<'PY' | write_ply far.ply
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+header, body = data.split(b"end_header\n", 1)
+for i in range(len(body) // 24):
+    x, y, z, nx, ny, nz = struct.unpack_from("<6f", body, 24 * i)
+    print(500000 + x, 4000000 + y, 100 + z, nx, ny, nz)
+PY
+"$RUN_MESHLABSERVER" -i far.ply -s "$script" -o far.surfel >far.log 2>&1
+grep -q "float coordinates there are held in steps of 0.25" far.log || {
+  echo "FAILED: no coarse-coordinates warning for far.ply" >&2; tail -5 far.log >&2; exit 1; }
+echo "ok: coordinates far from the origin reported coarse"
+
 # Fewer points than k.
 printf '0 0 0 0 0 1\n0.1 0 0 0 0 1\n0 0.1 0 0 0 1\n0.1 0.1 0 0 0 1\n0.05 0.05 0 0 0 1\n' | write_ply five.ply
 "$RUN_MESHLABSERVER" -i five.ply -s "$script" -o five.surfel >five.log 2>&1

@@ -4,13 +4,19 @@
 // blend scales included) when OUTPUT ends in .surfel, otherwise as a PLY point set with normals,
 // radius and quality, at their fitted positions; prints one line of figures.
 //
+// Double-precision input coordinates are resampled near the origin and written back in double,
+// so georeferenced scans keep their precision (ply_input.h); float coordinates far from the
+// origin, and a .surfel output of such input, are held in coarse steps, with a warning.
+//
 // Exit status: 0 done (a missed --target is a warning), 1 the input cannot be read, the
 // resampling fails or the output cannot be written, 2 a bad command line or parameter. Every
 // failure prints one line `gsresample: error: ...` on stderr; the command line and the
 // parameters are checked before the input is read, the output path before the resampling runs,
 // and the output appears only when complete (io_surfel/file_replacement.h); an output that is
 // the input file is refused.
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -55,7 +61,8 @@ std::string Usage()
     return "usage: gsresample INPUT.ply OUTPUT.ply|OUTPUT.surfel [OPTION VALUE]...\n"
            "       gsresample --help\n"
            "INPUT holds x y z nx ny nz per vertex; the output is a .surfel file (ellipse axes included)\n"
-           "when OUTPUT ends in .surfel, otherwise a PLY. The size control is the first given of\n"
+           "when OUTPUT ends in .surfel, otherwise a PLY, with double coordinates when INPUT has them\n"
+           "(kept at full precision however far from the origin). The size control is the first given of\n"
            "--max-error, --target, --percentage, else the level. Options (default; valid values):\n" +
            gsresample::OptionsUsage();
 }
@@ -130,22 +137,64 @@ bool SameFile(const std::string &a, const std::string &b)
     return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-/// Writes `surfels` to the prepared `output` and puts the file in place; false with a message.
-bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, OrientedPointMesh &surfels,
-                 std::string &error)
+/// Writes `mesh` as a binary PLY point set with normals, radius and quality to the prepared
+/// `output`, and puts the file in place; false with a message.
+template <class MeshType>
+bool WritePly(const std::string &path, surfel_io::FileReplacement &output, MeshType &mesh, std::string &error)
 {
-    if (IsSurfelPath(path)) {
-        const std::vector<surfel_io::SurfelRecord> records = surfel_io::recordsFromMesh(surfels);
-        return output.write([&](std::ostream &out, std::string &reason) { return surfel_io::writeSurfels(out, records, reason); },
-                            error);
-    }
     const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
                          vcg::tri::io::Mask::IOM_VERTQUALITY;
-    if (vcg::tri::io::ExporterPLY<OrientedPointMesh>::Save(surfels, output.writePath().c_str(), saveMask, true) != 0) {
+    if (vcg::tri::io::ExporterPLY<MeshType>::Save(mesh, output.writePath().c_str(), saveMask, true) != 0) {
         error = "cannot write " + PathText(path) + ": the PLY writer failed";
         return false;
     }
     return output.commit(error);
+}
+
+/// The .surfel records of `surfels`, moved back to where the input lay. The format holds float
+/// coordinates: when that rounds them coarsely (far from the origin), a warning says so.
+std::vector<surfel_io::SurfelRecord> SurfelRecords(const std::vector<Surfel> &surfels,
+                                                   const gsresample::InputPlacement &placement, double diagonal)
+{
+    OrientedPointMesh mesh;
+    WriteSurfels(surfels, mesh);
+    std::vector<surfel_io::SurfelRecord> records = surfel_io::recordsFromMesh(mesh);
+    if (!placement.doubleCoordinates) return records;
+    double farthest = 0;
+    for (surfel_io::SurfelRecord &record : records) {
+        for (int d = 0; d < 3; ++d) {
+            const double exact = double(record.position[d]) + placement.origin[d];
+            farthest = std::max(farthest, std::abs(exact));
+            record.position[d] = float(exact);
+        }
+    }
+    const double step = FloatStepAt(farthest);
+    if (step > kCoarseFloatStep * diagonal)
+        std::fprintf(stderr, "gsresample: warning: the .surfel format holds float coordinates, which up to %.7g from the "
+                     "origin are rounded to steps of %.3g (%.2g of the bounding-box diagonal); a PLY output keeps "
+                     "the input's double coordinates\n", farthest, step, step / diagonal);
+    return records;
+}
+
+/// Writes `surfels` to the prepared `output`, where the input lay (`placement`), and puts the
+/// file in place; false with a message. A PLY output of double-precision input is double too.
+bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, const ResamplingResult &result,
+                 const gsresample::InputPlacement &placement, std::string &error)
+{
+    if (IsSurfelPath(path)) {
+        const std::vector<surfel_io::SurfelRecord> records = SurfelRecords(result.surfels, placement, result.stats.diagonal);
+        return output.write([&](std::ostream &out, std::string &reason) { return surfel_io::writeSurfels(out, records, reason); },
+                            error);
+    }
+    if (!placement.doubleCoordinates) {
+        OrientedPointMesh mesh;
+        WriteSurfels(result.surfels, mesh);
+        return WritePly(path, output, mesh, error);
+    }
+    gsresample::DoublePointMesh mesh;
+    WriteSurfels(result.surfels, mesh);
+    for (gsresample::DoublePointVertex &v : mesh.vert) v.P() += placement.origin;
+    return WritePly(path, output, mesh, error);
 }
 
 void PrintFigures(const ResamplingStats &s)
@@ -174,13 +223,13 @@ int Run(int argc, char **argv)
 
     if (SameFile(line.input, line.output))
         return Fail(2, "the output " + PathText(line.output) + " is the input file: give another output path");
-    OrientedPointMesh in, out;
-    if (!gsresample::ReadOrientedPoints(line.input, in, error))
+    OrientedPointMesh in;
+    gsresample::InputPlacement placement;
+    if (!gsresample::ReadOrientedPoints(line.input, in, error, &placement))
         return Fail(1, "cannot read " + PathText(line.input) + ": " + error);
     surfel_io::FileReplacement output; // prepared before the resampling: an unwritable path fails at once
     if (!output.open(line.output, error)) return Fail(1, error);
     const ResamplingResult r = ResamplePointSet(in, line.param);
-    WriteSurfels(r.surfels, out);
     PrintFigures(r.stats);
     const std::string miss = r.stats.TargetMissReason();
     if (!miss.empty())
@@ -190,7 +239,9 @@ int Run(int argc, char **argv)
     if (!beyond.empty())
         std::fprintf(stderr, "gsresample: warning: %d point(s) remain beyond the error bound (largest distance %g x "
                      "diagonal): %s\n", r.stats.pointsAboveErrorBound, r.stats.surfaceErrorMax, beyond.c_str());
-    if (!WriteOutput(line.output, output, out, error)) return Fail(1, error);
+    const std::string coarse = r.stats.CoarsePositionsReason();
+    if (!coarse.empty()) std::fprintf(stderr, "gsresample: warning: %s\n", coarse.c_str());
+    if (!WriteOutput(line.output, output, r, placement, error)) return Fail(1, error);
     return 0;
 }
 

@@ -17,6 +17,7 @@
 #include <wrap/io_trimesh/import_ply.h>
 
 #include <io_surfel/printable_text.h>
+#include <vcg_ext/gaussphere/usable_points.h>
 
 namespace gsresample {
 namespace {
@@ -586,16 +587,13 @@ bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::st
     return true;
 }
 
-bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error)
-{
-    typedef vcg::tri::io::ImporterPLY<vcg::gaussphere::OrientedPointMesh> Importer;
-    PlyHeader header;
-    if (!ReadOrientedPointHeader(path, header, error)) return false;
-    if (!header.binary && !CheckAsciiBody(path, header, error)) {
-        error = Bounded(error);
-        return false;
-    }
+namespace {
 
+/// vcglib's ImporterPLY on a file whose header and ASCII body were checked.
+template <class MeshType>
+bool ImportChecked(const std::string &path, MeshType &mesh, std::string &error)
+{
+    typedef vcg::tri::io::ImporterPLY<MeshType> Importer;
     int mask = 0;
     int status = 0;
     try {
@@ -613,6 +611,61 @@ bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointM
     }
     if (!(mask & vcg::tri::io::Mask::IOM_VERTNORMAL)) {
         error = "vcglib's PLY reader found no per-vertex normals";
+        return false;
+    }
+    return true;
+}
+
+bool HasDoubleCoordinates(const PlyHeader &header)
+{
+    for (const HeaderElement &element : header.elements) {
+        if (element.name != "vertex") continue;
+        for (const char *axis : {"x", "y", "z"}) {
+            const HeaderProperty *p = element.Find(axis);
+            if (p && CanonicalType(p->type) == "double") return true;
+        }
+    }
+    return false;
+}
+
+/// The centre of the bounding box of the points the resampler can use (usable_points.h), in
+/// double; 0 when there is none.
+vcg::Point3d CentreOfUsablePoints(const DoublePointMesh &exact)
+{
+    vcg::Box3d box;
+    for (const DoublePointVertex &v : exact.vert)
+        if (vcg::gaussphere::ClassifyVertex(v) == vcg::gaussphere::VertexUse::kUsable) box.Add(v.cP());
+    return box.IsNull() ? vcg::Point3d(0, 0, 0) : box.Center();
+}
+
+} // namespace
+
+bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error,
+                        InputPlacement *placement)
+{
+    PlyHeader header;
+    if (!ReadOrientedPointHeader(path, header, error)) return false;
+    if (!header.binary && !CheckAsciiBody(path, header, error)) {
+        error = Bounded(error);
+        return false;
+    }
+    if (placement) *placement = InputPlacement();
+    if (!placement || !HasDoubleCoordinates(header)) return ImportChecked(path, mesh, error);
+
+    DoublePointMesh exact;
+    if (!ImportChecked(path, exact, error)) return false;
+    placement->doubleCoordinates = true;
+    placement->origin = CentreOfUsablePoints(exact);
+    try {
+        mesh.Clear();
+        auto vi = vcg::tri::Allocator<vcg::gaussphere::OrientedPointMesh>::AddVertices(mesh, exact.vert.size());
+        for (const DoublePointVertex &v : exact.vert) {
+            vi->P() = vcg::Point3f::Construct(v.cP() - placement->origin);
+            vi->N() = vcg::Point3f::Construct(v.cN());
+            ++vi;
+        }
+    } catch (const std::bad_alloc &) {
+        error = "not enough memory for the points";
         return false;
     }
     return true;

@@ -97,6 +97,7 @@ struct ResamplingStats
     int pointsAboveErrorBound = 0; ///< points the blended surface still leaves beyond the bound
     double surfaceErrorMax = 0;    ///< largest distance of a point to it, over `diagonal`
     double diagonal = 0;           ///< bounding-box diagonal of the usable points, in the model's units
+    double farthestCoordinate = 0; ///< largest magnitude of a usable point's coordinate, in the model's units
     int surfelsNarrowedAtCreases = 0; ///< surfels whose blend creaseBlendScale narrowed
     int surfelsFitted = 0;         ///< surfels moved to fit the blended surface (fitOffsets)
     int boundaryPoints = 0;        ///< points on or beside the rim of an open surface (spreadEvenly; BoundaryBand)
@@ -138,6 +139,21 @@ struct ResamplingStats
         if (sizeMode != SizeControl::ErrorBound || pointsAboveErrorBound == 0) return std::string();
         return SurfaceBoundCapped() ? "the refinement stopped at its cap of projection rounds"
                                     : "the surfels around them are split and narrowed as far as they go";
+    }
+    /// When the input's float coordinates are coarse (kCoarseFloatStep): what that does and what to
+    /// do; empty otherwise.
+    std::string CoarsePositionsReason() const
+    {
+        const double step = FloatStepAt(farthestCoordinate);
+        if (!(diagonal > 0) || step <= kCoarseFloatStep * diagonal) return std::string();
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "the points lie up to %.7g units from the origin, %.0f times their bounding-box diagonal: float "
+                      "coordinates there are held in steps of %.3g (%.2g of the diagonal), which rounds positions and "
+                      "merges close points; move the points towards the origin before they are read as float "
+                      "(gsresample does so itself for double-precision PLY files)",
+                      farthestCoordinate, farthestCoordinate / diagonal, step, step / diagonal);
+        return text;
     }
     double TotalSeconds() const
     {
@@ -322,6 +338,7 @@ void ReadPoints(const MeshType &mesh, Run &run)
     ScalePoints(run.scale, run.points);
     run.diagonal = unit.diagonal;
     stats.diagonal = run.diagonal / run.scale;
+    stats.farthestCoordinate = run.farthest;
     run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
 }
 

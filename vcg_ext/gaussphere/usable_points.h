@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <omp.h>
@@ -128,6 +129,20 @@ inline double UnitScaleOf(double diagonal)
     std::frexp(diagonal, &exponent); // diagonal = m 2^exponent, m in [0.5, 1)
     return std::ldexp(1.0, 1 - exponent);
 }
+
+/// The gap between a float and the next larger one at `magnitude`: the step in which float
+/// coordinates that far from the origin are held (about 2^-23 of it).
+inline double FloatStepAt(double magnitude)
+{
+    const float f = float(std::abs(magnitude));
+    return double(std::nextafter(f, std::numeric_limits<float>::infinity())) - double(f);
+}
+
+/// Float coordinates whose step exceeds this fraction of the bounding-box diagonal are coarse:
+/// they lie more than about 100 diagonals from the origin (georeferenced scans lie a million
+/// and more away), so rounding moves points by a visible part of their spacing and merges close
+/// ones. At the model's own scale the step is 2^-23 of its size.
+constexpr double kCoarseFloatStep = 1e-5;
 
 /// How the resampler measures points whose bounding box is `box` (model units).
 struct UnitScaleBox

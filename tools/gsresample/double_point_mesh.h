@@ -1,0 +1,36 @@
+// Oriented points in double precision, for PLY files whose coordinates are double: read here
+// before they are moved near the origin and become float (ply_input.h), and written from here
+// with that move undone (gsresample's PLY output), so georeferenced coordinates, millions of
+// units from the origin, keep their precision through a float resampler.
+#ifndef GSRESAMPLE_DOUBLE_POINT_MESH_H
+#define GSRESAMPLE_DOUBLE_POINT_MESH_H
+
+#include <vcg/complex/complex.h>
+
+namespace gsresample {
+
+class DoublePointVertex;
+struct DoublePointTypes : public vcg::UsedTypes<vcg::Use<DoublePointVertex>::AsVertexType> {};
+class DoublePointVertex
+    : public vcg::Vertex<DoublePointTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::Radiusf,
+                         vcg::vertex::Qualityd, vcg::vertex::BitFlags> {}; // Qualityd: vcglib's PLY writer
+                                                                          // types quality as the coordinates
+class DoublePointMesh : public vcg::tri::TriMesh<std::vector<DoublePointVertex>>
+{
+public:
+    DoublePointMesh() = default;
+    DoublePointMesh(const DoublePointMesh &) = delete;
+    DoublePointMesh &operator=(const DoublePointMesh &) = delete;
+    ~DoublePointMesh() { ClearAttributes(); }
+};
+
+/// Where ReadOrientedPoints put the points: the mesh holds each point minus `origin`.
+struct InputPlacement
+{
+    bool doubleCoordinates = false; ///< the file's x, y or z is double
+    vcg::Point3d origin{0, 0, 0};   ///< double coordinates: the centre of their bounding box; else 0
+};
+
+} // namespace gsresample
+
+#endif
