@@ -252,6 +252,81 @@ TEST_F(BunnyTiles, TheMergeKeepsASurfelForEveryBorderPointNoTileKeepsNorCovers)
     EXPECT_NE(error.find("tile " + std::to_string(id) + ":"), std::string::npos) << error;
 }
 
+/// Writes the bunny moved by `offset` with double x y z and float normals; returns the path.
+std::string WriteDoubleBunny(const std::string &path, const std::array<double, 3> &offset)
+{
+    vcg::gaussphere::OrientedPointMesh bunny;
+    std::string error;
+    EXPECT_TRUE(gsresample::ReadOrientedPoints(kBunny, bunny, error)) << error;
+    std::ofstream out(path, std::ios::binary);
+    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << bunny.vert.size() << "\n"
+        << "property double x\nproperty double y\nproperty double z\n"
+        << "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
+    for (const auto &v : bunny.vert) {
+        for (int a = 0; a < 3; ++a) {
+            const double position = double(v.cP()[a]) + offset[size_t(a)];
+            out.write(reinterpret_cast<const char *>(&position), sizeof position);
+        }
+        out.write(reinterpret_cast<const char *>(&v.cN()[0]), 3 * sizeof(float));
+    }
+    return path;
+}
+
+/// Splits, runs and merges `input` into the PLY `output`, tiles in `dir`.
+void TileToPly(const std::string &input, const std::string &dir, const std::string &output)
+{
+    SplitOptions options;
+    options.tilePoints = 20000;
+    Manifest manifest;
+    std::string error;
+    ASSERT_TRUE(Split(input, dir, options, manifest, [](const std::string &) {}, error)) << error;
+    ASSERT_TRUE(manifest.doubleCoordinates);
+    for (const TileEntry &t : manifest.tiles) {
+        TileRunFigures figures;
+        ASSERT_TRUE(RunTile(dir, manifest, t.id, figures, error)) << error;
+    }
+    MergeFigures figures;
+    ASSERT_TRUE(Merge(dir, manifest, output, figures, error)) << error;
+}
+
+/// x y z of each vertex of a merged PLY with double coordinates.
+std::vector<std::array<double, 3>> ReadDoublePositions(const std::string &path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::string line, header;
+    std::size_t count = 0;
+    while (std::getline(in, line) && line != "end_header") {
+        header += line + "\n";
+        if (line.rfind("element vertex ", 0) == 0) count = std::stoul(line.substr(15));
+    }
+    EXPECT_NE(header.find("property double x\nproperty double y\nproperty double z\nproperty float nx\n"),
+              std::string::npos) << header;
+    std::vector<std::array<double, 3>> positions(count);
+    for (auto &p : positions) {
+        in.read(reinterpret_cast<char *>(p.data()), sizeof p);
+        in.ignore(5 * sizeof(float)); // nx ny nz radius quality
+    }
+    EXPECT_TRUE(bool(in));
+    return positions;
+}
+
+// A georeferenced scan (UTM metres, where floats step by 0.25 m; the bunny is 0.26 m across)
+// tiles as the same scan at the origin does: split streams double positions relative to a point
+// of the model, and merge moves the surfels back, in double.
+TEST(DoubleCoordinates, TileFarFromTheOriginAsNearIt)
+{
+    const std::string dir = ::testing::TempDir() + "gstile_double_";
+    const std::array<double, 3> far{{500000, 4000000, 100}};
+    TileToPly(WriteDoubleBunny(dir + "near.ply", {{0, 0, 0}}), dir + "near.tiles", dir + "near_out.ply");
+    TileToPly(WriteDoubleBunny(dir + "far.ply", far), dir + "far.tiles", dir + "far_out.ply");
+    const auto near = ReadDoublePositions(dir + "near_out.ply"), moved = ReadDoublePositions(dir + "far_out.ply");
+    ASSERT_GT(near.size(), 5000u);
+    ASSERT_EQ(moved.size(), near.size());
+    for (std::size_t i = 0; i < near.size(); ++i)
+        for (int a = 0; a < 3; ++a)
+            ASSERT_NEAR(moved[i][size_t(a)] - far[size_t(a)], near[i][size_t(a)], 1e-8) << "surfel " << i;
+}
+
 TEST_F(BunnyTiles, ACorruptOrTruncatedTileFileIsRefusedWithTheTileNamed)
 {
     const TileEntry &tile = manifest_.tiles[1];

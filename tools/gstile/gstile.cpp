@@ -209,6 +209,12 @@ int MergeTiles(const std::string &dir, const Manifest &manifest, const std::stri
                   (unsigned long long)manifest.points, (unsigned long long)figures.rescued,
                   (unsigned long long)figures.uncovered, (unsigned long long)figures.members, output.c_str());
     PrintLine(line);
+    if (figures.coarseStep > 0) {
+        std::snprintf(line, sizeof line,
+                      "[merge] warning: the .surfel format holds float coordinates, which this far from the origin are "
+                      "rounded to steps of %.3g; a PLY output keeps the input's double coordinates", figures.coarseStep);
+        PrintLine(line);
+    }
     return 0;
 }
 

@@ -10,7 +10,7 @@ namespace gstile {
 
 namespace {
 
-constexpr const char *kFormat = "gstile-manifest 2";
+constexpr const char *kFormat = "gstile-manifest 3";
 using nlohmann::json;
 
 json TilesToJson(const std::vector<TileEntry> &tiles)
@@ -30,6 +30,8 @@ json ToJson(const Manifest &m)
             {"input", m.input},
             {"points", m.points},
             {"skipped", m.skipped},
+            {"double_coordinates", m.doubleCoordinates},
+            {"origin", m.origin},
             {"box_min", m.boxMin},
             {"box_max", m.boxMax},
             {"diagonal", m.diagonal},
@@ -49,6 +51,8 @@ void FromJson(const json &j, Manifest &m)
     m.input = j.at("input").get<std::string>();
     m.points = j.at("points").get<std::uint64_t>();
     m.skipped = j.at("skipped").get<std::uint64_t>();
+    m.doubleCoordinates = j.at("double_coordinates").get<bool>();
+    m.origin = j.at("origin").get<std::array<double, 3>>();
     m.boxMin = j.at("box_min").get<std::array<double, 3>>();
     m.boxMax = j.at("box_max").get<std::array<double, 3>>();
     m.diagonal = j.at("diagonal").get<double>();

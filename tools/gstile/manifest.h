@@ -27,6 +27,8 @@ struct Manifest
     std::string input;
     std::uint64_t points = 0;  ///< usable points of the input
     std::uint64_t skipped = 0; ///< points the resampler would skip (non-finite position, bad normal)
+    bool doubleCoordinates = false; ///< the input's x, y or z is double
+    std::array<double, 3> origin{}; ///< tile positions (and all below) are the input's minus this
     std::array<double, 3> boxMin{}, boxMax{};
     double diagonal = 0;       ///< of the usable points, as the resampler measures it (tile_params.h)
     double spacing = 0;        ///< the sample spacing estimate (spacing.h)

@@ -1,10 +1,12 @@
 #include "merge.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
 #include <io_surfel/surfel_file.h>
+#include <vcg_ext/gaussphere/usable_points.h>
 
 #include "border_points.h"
 #include "target_share.h"
@@ -35,27 +37,46 @@ bool CountSurfels(const std::string &dir, const Manifest &manifest, std::uint64_
     return true;
 }
 
-void WritePlyHeader(std::ostream &out, std::uint64_t count)
+/// The PLY header: x y z in double when the input's were (`doubleCoordinates`), else float.
+void WritePlyHeader(std::ostream &out, std::uint64_t count, bool doubleCoordinates)
 {
     out << "ply\nformat binary_little_endian 1.0\nelement vertex " << count << "\n";
-    for (const char *name : {"x", "y", "z", "nx", "ny", "nz", "radius", "quality"})
-        out << "property float " << name << "\n";
+    for (const char *name : {"x", "y", "z"}) out << "property " << (doubleCoordinates ? "double " : "float ") << name << "\n";
+    for (const char *name : {"nx", "ny", "nz", "radius", "quality"}) out << "property float " << name << "\n";
     out << "end_header\n";
 }
 
-/// x y z nx ny nz radius quality of each record, little-endian like the rest of the project's files.
-bool WritePlyRecords(std::ostream &out, const std::vector<surfel_io::SurfelRecord> &records)
+/// Appends `value`'s bytes, little-endian like the rest of the project's files.
+template <class T>
+void AppendBytes(std::vector<char> &bytes, T value)
 {
-    std::vector<float> values;
-    values.reserve(records.size() * 8);
+    const char *p = reinterpret_cast<const char *>(&value);
+    bytes.insert(bytes.end(), p, p + sizeof value);
+}
+
+/// x y z nx ny nz radius quality of each record, the position moved back by the manifest's origin.
+bool WritePlyRecords(std::ostream &out, const std::vector<surfel_io::SurfelRecord> &records, const Manifest &manifest)
+{
+    std::vector<char> bytes;
+    bytes.reserve(records.size() * (manifest.doubleCoordinates ? 44 : 32));
     for (const surfel_io::SurfelRecord &r : records) {
-        values.insert(values.end(), r.position.begin(), r.position.end());
-        values.insert(values.end(), r.normal.begin(), r.normal.end());
-        values.push_back(r.radius);
-        values.push_back(r.quality);
+        for (int a = 0; a < 3; ++a) {
+            if (manifest.doubleCoordinates) AppendBytes(bytes, double(r.position[size_t(a)]) + manifest.origin[size_t(a)]);
+            else AppendBytes(bytes, r.position[size_t(a)]);
+        }
+        for (float v : r.normal) AppendBytes(bytes, v);
+        AppendBytes(bytes, r.radius);
+        AppendBytes(bytes, r.quality);
     }
-    out.write(reinterpret_cast<const char *>(values.data()), std::streamsize(values.size() * sizeof(float)));
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     return bool(out);
+}
+
+/// The records moved back by the manifest's origin, in the .surfel format's float coordinates.
+void MoveToInputOrigin(const Manifest &manifest, std::vector<surfel_io::SurfelRecord> &records)
+{
+    for (surfel_io::SurfelRecord &r : records)
+        for (int a = 0; a < 3; ++a) r.position[size_t(a)] = float(double(r.position[size_t(a)]) + manifest.origin[size_t(a)]);
 }
 
 bool AppendTiles(const std::string &dir, const Manifest &manifest, const Rescues &rescues, bool surfelFormat,
@@ -66,8 +87,10 @@ bool AppendTiles(const std::string &dir, const Manifest &manifest, const Rescues
         const int id = manifest.tiles[t].id;
         if (!ReadTileOutput(dir, id, rescues.spares[t], records, error)) return false;
         for (const surfel_io::SurfelRecord &r : records) figures.members += std::uint64_t(std::llround(r.quality));
+        if (surfelFormat) MoveToInputOrigin(manifest, records);
         std::string reason;
-        const bool written = surfelFormat ? surfel_io::writeSurfelRecords(out, records, reason) : WritePlyRecords(out, records);
+        const bool written = surfelFormat ? surfel_io::writeSurfelRecords(out, records, reason)
+                                          : WritePlyRecords(out, records, manifest);
         if (!written) {
             error = "write error after tile " + std::to_string(id) + (reason.empty() ? "" : ": " + reason);
             return false;
@@ -89,9 +112,17 @@ bool Merge(const std::string &dir, const Manifest &manifest, const std::string &
     figures.rescued = rescues.surfels;
     figures.uncovered = rescues.uncovered;
     const bool surfelFormat = EndsWith(output, ".surfel");
+    if (surfelFormat && manifest.doubleCoordinates) {
+        double farthest = 0;
+        for (int a = 0; a < 3; ++a)
+            farthest = std::max({farthest, std::abs(manifest.origin[size_t(a)] + manifest.boxMin[size_t(a)]),
+                                 std::abs(manifest.origin[size_t(a)] + manifest.boxMax[size_t(a)])});
+        const double step = vcg::gaussphere::FloatStepAt(farthest);
+        if (step > vcg::gaussphere::kCoarseFloatStep * manifest.diagonal) figures.coarseStep = step;
+    }
     return WriteAtomically(output, [&](std::ostream &out, std::string &reason) {
         if (surfelFormat) surfel_io::writeSurfelHeader(out, figures.surfels);
-        else WritePlyHeader(out, figures.surfels);
+        else WritePlyHeader(out, figures.surfels, manifest.doubleCoordinates);
         return AppendTiles(dir, manifest, rescues, surfelFormat, out, figures, reason);
     }, error);
 }

@@ -20,6 +20,8 @@ struct MergeFigures
     std::uint64_t uncovered = 0; ///< ... those points
     std::uint64_t members = 0; ///< points the surfels represent: the input's usable points when no
                                ///< border cluster is lost or kept twice (rescued ones are kept twice)
+    double coarseStep = 0;     ///< a .surfel output of double input far from the origin: the step of
+                               ///< its float coordinates there, when coarse (usable_points.h); else 0
 };
 
 /// Writes `output` (a .surfel file when its name ends in .surfel, else a PLY with normal, radius

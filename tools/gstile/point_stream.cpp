@@ -92,21 +92,44 @@ bool PointStream::Next(std::vector<OrientedPoint> &chunk, std::string &error)
         return false;
     }
     for (std::size_t i = 0; i < n; ++i) {
-        const char *record = &bytes_[i * recordBytes_];
-        float *fields[6] = {&chunk[i].position[0], &chunk[i].position[1], &chunk[i].position[2],
-                            &chunk[i].normal[0],   &chunk[i].normal[1],   &chunk[i].normal[2]};
-        for (int f = 0; f < 6; ++f) {
-            if (isDouble_[f]) {
-                double value;
-                std::memcpy(&value, record + offsets_[f], sizeof value);
-                *fields[f] = float(value);
-            } else {
-                std::memcpy(fields[f], record + offsets_[f], sizeof(float));
-            }
+        double fields[6];
+        Decode(i, fields);
+        for (int a = 0; a < 3; ++a) {
+            chunk[i].position[a] = float(fields[a] - origin_[size_t(a)]);
+            chunk[i].normal[a] = float(fields[3 + a]);
         }
     }
     read_ += n;
     return true;
+}
+
+void PointStream::Decode(std::size_t i, double fields[6]) const
+{
+    const char *record = &bytes_[i * recordBytes_];
+    for (int f = 0; f < 6; ++f) {
+        if (isDouble_[f]) {
+            std::memcpy(&fields[f], record + offsets_[f], sizeof(double));
+        } else {
+            float single;
+            std::memcpy(&single, record + offsets_[f], sizeof single);
+            fields[f] = single;
+        }
+    }
+}
+
+bool PointStream::FirstUsablePosition(std::array<double, 3> &position, std::string &error)
+{
+    std::vector<OrientedPoint> chunk;
+    while (Next(chunk, error)) {
+        for (std::size_t i = 0; i < chunk.size(); ++i) {
+            if (!IsUsable(chunk[i])) continue;
+            double fields[6];
+            Decode(i, fields);
+            position = {{fields[0], fields[1], fields[2]}};
+            return true;
+        }
+    }
+    return false;
 }
 
 } // namespace gstile

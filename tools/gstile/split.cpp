@@ -31,13 +31,16 @@ struct Survey
     PointSample sample;
 };
 
-/// Calls `each(chunk)` for every chunk of the input, with a progress line every tenth.
-bool StreamInput(const std::string &input, const std::string &pass, const ProgressLine &progress,
+/// Calls `each(chunk)` for every chunk of the input, positions relative to `origin`, with a
+/// progress line every tenth.
+bool StreamInput(const std::string &input, const std::array<double, 3> &origin, const std::string &pass,
+                 const ProgressLine &progress,
                  const std::function<bool(const std::vector<OrientedPoint> &, std::uint64_t first)> &each,
                  std::string &error)
 {
     PointStream stream;
     if (!stream.Open(input, error)) return false;
+    stream.SetOrigin(origin);
     std::vector<OrientedPoint> chunk;
     int reported = 0;
     while (true) {
@@ -56,9 +59,21 @@ bool StreamInput(const std::string &input, const std::string &pass, const Progre
     return error.empty();
 }
 
-bool SurveyInput(const std::string &input, const ProgressLine &progress, Survey &survey, std::string &error)
+/// The origin the tiles' positions are relative to, into `manifest`: for double coordinates the
+/// first usable point's position (a point of the model is near enough for their precision, and
+/// the same point of a moved copy moves with it); 0 for float ones.
+bool ChooseOrigin(const std::string &input, Manifest &manifest, std::string &error)
 {
-    return StreamInput(input, "pass 1 (survey)", progress, [&survey](const std::vector<OrientedPoint> &chunk, std::uint64_t) {
+    PointStream stream;
+    if (!stream.Open(input, error)) return false;
+    manifest.doubleCoordinates = stream.HasDoubleCoordinates();
+    return !manifest.doubleCoordinates || stream.FirstUsablePosition(manifest.origin, error) || error.empty();
+}
+
+bool SurveyInput(const std::string &input, const std::array<double, 3> &origin, const ProgressLine &progress,
+                 Survey &survey, std::string &error)
+{
+    return StreamInput(input, origin, "pass 1 (survey)", progress, [&survey](const std::vector<OrientedPoint> &chunk, std::uint64_t) {
         for (const OrientedPoint &p : chunk) {
             if (!IsUsable(p)) {
                 ++survey.skipped;
@@ -120,7 +135,7 @@ bool WriteTiles(const std::string &input, const std::string &dir, const SplitOpt
     TileWriter writer(dir, manifest.grid.TileCount(), bufferBytes);
     const TileGrid &grid = manifest.grid;
     const double halo = manifest.halo;
-    const bool read = StreamInput(input, "pass 2 (tiles)", progress,
+    const bool read = StreamInput(input, manifest.origin, "pass 2 (tiles)", progress,
                                   [&](const std::vector<OrientedPoint> &chunk, std::uint64_t first) {
         for (std::size_t i = 0; i < chunk.size(); ++i) {
             const OrientedPoint &p = chunk[i];
@@ -172,7 +187,8 @@ bool Split(const std::string &input, const std::string &dir, const SplitOptions 
     manifest = Manifest();
     manifest.input = input;
     Survey survey;
-    if (!SurveyInput(input, progress, survey, error)) return false;
+    if (!ChooseOrigin(input, manifest, error) || !SurveyInput(input, manifest.origin, progress, survey, error))
+        return false;
     if (survey.usable < 2) {
         error = "the input has " + std::to_string(survey.usable) + " usable point(s); at least 2 are needed";
         return false;
