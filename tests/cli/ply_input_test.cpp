@@ -195,6 +195,27 @@ TEST_F(PlyInput, FaceCornersThatAreNoVertexAreRefused)
                   "face record 0 names vertex -5 of 3");
 }
 
+TEST_F(PlyInput, FacesOfFewerThanThreeCornersAreRefused)
+{
+    // vcglib would make a triangle of them, its missing corners unset (valgrind: uninitialised
+    // values indexing the vertices).
+    const std::string faces = "element face 2\nproperty list uchar int vertex_indices\n";
+    ExpectRefused(Header("ascii", "3", faces) + AsciiRows(3) + "3 0 1 2\n2 0 1\n",
+                  "line 17 (face 1), property vertex_indices: 2 corner(s); a face needs at least 3");
+    ExpectRefused(Header("ascii", "3", faces) + AsciiRows(3) + "0\n3 0 1 2\n",
+                  "line 16 (face 0), property vertex_indices: 0 corner(s); a face needs at least 3");
+    // A polygon of 10 corners first, so that the body is as long as two triangles take.
+    std::string binary(3 * 24, '\0');
+    const std::int32_t corners[10] = {0, 1, 2, 0, 1, 2, 0, 1, 2, 0};
+    binary += std::string(1, char(10));
+    binary.append(reinterpret_cast<const char *>(corners), sizeof corners);
+    binary += std::string(1, char(1));
+    binary.append(reinterpret_cast<const char *>(corners), sizeof(std::int32_t));
+    ExpectRefused(Header("binary_little_endian", "3", faces) + binary, "face record 1 has 1 corner(s); a face needs at least 3");
+    // Polygons are read, as triangle fans.
+    ExpectRead(Header("ascii", "4", faces) + AsciiRows(4) + "3 0 1 2\n4 0 1 2 3\n", 4);
+}
+
 TEST_F(PlyInput, ElementsAndTypesVcglibAssertsOnAreRefused)
 {
     ExpectRefused(Header("ascii", "3", "element edge 1\nproperty int vertex1\nproperty int vertex2\n") + AsciiRows(3) + "0 1\n",

@@ -330,6 +330,10 @@ bool RecordChecker::List(const PropertyCheck &property, Tokens &tokens, std::siz
         error = Where(property) + ", list count: " + (problem.empty() ? Quote(b, e) + " is negative" : problem);
         return false;
     }
+    if (property.corners && count < 3) { // vcglib would make a triangle of unset corners
+        error = Where(property) + ": " + std::to_string(count) + " corner(s); a face needs at least 3";
+        return false;
+    }
     for (long long i = 0; i < count; ++i) {
         if (!tokens.Next(b, e)) {
             error = Where(property) + ", item " + std::to_string(i) + ": missing (the line has " + std::to_string(values) + " values, the list count is " +

@@ -509,6 +509,11 @@ bool CheckFaceCorners(const std::string &path, const PlyHeader &header, std::str
                 const bool corners = IsReadCornerList(element, p);
                 long count = 0;
                 if (!read.Count(p.countType, corners, count)) return true;
+                if (corners && count < 3) { // vcglib would make a triangle of unset corners
+                    error = "face record " + std::to_string(r) + " has " + std::to_string(count) +
+                            " corner(s); a face needs at least 3";
+                    return false;
+                }
                 for (long i = 0; i < count; ++i) {
                     long long corner = 0;
                     if (!corners) {

@@ -56,7 +56,7 @@ bool IsReadCornerList(const HeaderElement &element, const HeaderProperty &proper
 
 /// Reads the header of `path` and checks what ReadOrientedPoints needs: a vertex element with
 /// float or double x y z nx ny nz and no lists, a body at least as long as the counts announce,
-/// and in a binary file face corners that are vertices. The records of an ASCII body are
+/// and in a binary file faces of at least 3 corners that are vertices. The records of an ASCII body are
 /// checked by CheckAsciiBody. On failure returns false with `error` as ReadOrientedPoints gives it.
 bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::string &error);
 
@@ -66,8 +66,8 @@ bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::st
 /// count, then that many items), each a whole number of its property's type: a decimal integer in
 /// the type's range for integer types; for float and double a decimal or hexadecimal number
 /// (1e999 reads as infinity) or nan, inf, infinity in any case, optionally signed. A list count
-/// is not negative, a face corner names a vertex. Blank lines are passed over between the records
-/// and after the last one; anything else after it is refused. On failure returns false with
+/// is not negative, a face has at least 3 corners and each names a vertex. Blank lines are
+/// passed over between the records and after the last one; anything else after it is refused. On failure returns false with
 /// `error` naming the line, the record ("vertex 12", counted from 0), the property and the text.
 bool CheckAsciiBody(const std::string &path, const PlyHeader &header, std::string &error);
 
