@@ -1,6 +1,6 @@
 # gsresample on bad options and hostile PLY files: one line `gsresample: error: ...`, the
 # documented status (2 for the command line, 1 for the input), no output left behind, never a
-# crash; and a warning, status 0, when --target cannot be met.
+# crash; and a warning, status 0, when --target cannot be met or an option is overridden.
 # Environment: GSRESAMPLE (the program), WORK_DIR (a folder of this test's own).
 set -u
 mkdir -p "$WORK_DIR" && cd "$WORK_DIR" && rm -f ./*.ply ./*.surfel ./*.part ./*.log
@@ -118,6 +118,25 @@ if [ "$status" = 0 ] && [ ! -s stderr.log ] && grep -q ' output 40 ' stdout.log 
 else
   fail "--target 40 exited $status"; cat stderr.log stdout.log >&2
 fi
+
+# Options the others override change nothing: each gets a warning, status 0, the output written.
+# warns WARNING ARGS...: gsresample hundred.ply out.ply ARGS exits 0 with WARNING on stderr.
+warns() {
+  local warning=$1 status=0
+  shift
+  rm -f out.ply
+  "$GSRESAMPLE" hundred.ply out.ply "$@" >stdout.log 2>stderr.log || status=$?
+  if [ "$status" = 0 ] && grep -qF "gsresample: warning: $warning" stderr.log && [ -s out.ply ]; then
+    echo "ok: $*: $warning"
+  else
+    fail "$* exited $status without '$warning'"; cat stderr.log >&2
+  fi
+}
+warns "--exchanges has no effect without --target, --percentage or --spread-evenly 1" --exchanges 4
+warns "--exchanges has no effect without" --max-error 0.01 --exchanges 4
+warns "--level has no effect: the target (the level is searched for) sets the size" --target 40 --level 12
+warns "--percentage has no effect: --target sets the size" --target 40 --percentage 5
+warns "--target has no effect: --max-error sets the size" --max-error 0.01 --target 40
 
 [ "$failures" = 0 ] || { echo "$failures failure(s)" >&2; exit 1; }
 echo "all gsresample hostile cases passed"

@@ -71,6 +71,7 @@ struct CommandLine
 {
     std::string input, output;
     ResamplingParams param;
+    std::vector<std::string> options; ///< the options given, as typed
     bool help = false;
 };
 
@@ -78,7 +79,8 @@ struct CommandLine
 /// given at most once. False with a one-line reason on any other shape.
 bool ParseCommandLine(int argc, char **argv, CommandLine &line, std::string &error)
 {
-    std::vector<std::string> paths, seen;
+    std::vector<std::string> paths;
+    std::vector<std::string> &seen = line.options;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         if (arg == "--help" || arg == "-h") {
@@ -220,6 +222,8 @@ int Run(int argc, char **argv)
     }
     const std::string invalid = line.param.Validate();
     if (!invalid.empty()) return Fail(2, invalid);
+    for (const std::string &warning : gsresample::OverriddenOptions(line.options, line.param))
+        std::fprintf(stderr, "gsresample: warning: %s\n", warning.c_str());
 
     if (SameFile(line.input, line.output))
         return Fail(2, "the output " + PathText(line.output) + " is the input file: give another output path");

@@ -65,4 +65,26 @@ std::string OptionsUsage()
     return text;
 }
 
+std::vector<std::string> OverriddenOptions(const std::vector<std::string> &given,
+                                           const vcg::gaussphere::ResamplingParams &param)
+{
+    using vcg::gaussphere::SizeControl;
+    const auto has = [&given](const char *option) { return std::find(given.begin(), given.end(), option) != given.end(); };
+    const SizeControl mode = param.SizeMode();
+    std::vector<std::string> warnings;
+    const auto overridden = [&](const char *option, const char *by) {
+        if (has(option)) warnings.push_back(std::string(option) + " has no effect: " + by + " sets the size");
+    };
+    if (mode == SizeControl::ErrorBound) {
+        overridden("--target", "--max-error");
+        overridden("--percentage", "--max-error");
+    } else if (mode == SizeControl::TargetCount) {
+        overridden("--level", "the target (the level is searched for)");
+        if (param.targetCount > 0) overridden("--percentage", "--target");
+    }
+    if (has("--exchanges") && !(mode == SizeControl::TargetCount || param.spreadEvenly))
+        warnings.push_back("--exchanges has no effect without --target, --percentage or --spread-evenly 1");
+    return warnings;
+}
+
 } // namespace gsresample
