@@ -45,7 +45,8 @@ QString FilterInfo(ResamplingFilter filter)
            "clusters rejoin their most similar neighbour, and elongated clusters are split until "
            "they are disc-like. Each cluster becomes one surfel, so the output is dense where "
            "the normals vary (edges, ridges, fine detail) and sparse on flat parts.<br>"
-           "The result is a new layer <i>&lt;name&gt; resampled</i> with unit normals, per-vertex "
+           "The result is a new layer <i>&lt;name&gt; resampled</i>, placed by the input's "
+           "transformation matrix, with unit normals, per-vertex "
            "radius, quality = number of input points represented, and the per-vertex attributes "
            "<i>EllipseMajorAxis</i> and <i>EllipseMinorAxis</i> (semi-axis vectors), <i>SurfelFitOffset</i> "
            "(how far FitOffsets moved each surfel) and <i>SurfelBlendScale</i> where the blend of a surfel "
@@ -162,6 +163,9 @@ ResampleOutcome ResampleCurrentLayer(ResamplingFilter filter, MeshDocument &md, 
     }
     ResampleOutcome outcome;
     outcome.output = md.addNewMesh("", input->label() + " resampled", true);
+    // The surfels are in the input's own coordinates: the new layer takes its placement too (a
+    // layer moved or aligned in MeshLab keeps its vertices and holds the move in Tr).
+    outcome.output->cm.Tr = in.Tr;
     outcome.output->updateDataMask(MeshModel::MM_VERTRADIUS | MeshModel::MM_VERTQUALITY);
     gs::WriteSurfels(result.surfels, outcome.output->cm);
     if (input->hasDataMask(MeshModel::MM_VERTCOLOR)) {

@@ -74,6 +74,12 @@ QString CheckLayers(MeshModel *original, MeshModel *simplified, int &originalNor
         return "Choose two existing layers: the original and the simplified point set.";
     if (original->cm.vn == 0) return QString("The original layer '%1' is empty.").arg(original->label());
     if (simplified->cm.vn == 0) return QString("The simplified layer '%1' is empty.").arg(simplified->label());
+    // The metric compares the layers' own coordinates; where each is drawn is its matrix times them.
+    if (original->cm.Tr != simplified->cm.Tr)
+        return QString("The layers '%1' and '%2' are placed by different transformation matrices, so their "
+                       "coordinates do not correspond: apply the matrices first (Filters > Normals, Curvatures "
+                       "and Orientation > Matrix: Freeze Current Matrix, on each layer).")
+            .arg(original->label(), simplified->label());
     const QString noNormalsAdvice = "Compute them with Filters > Normals, Curvatures and Orientation > "
                                     "Compute normals for point sets.";
     if (CountNormals(simplified->cm) == 0)
@@ -204,7 +210,8 @@ QString FilterInfo()
            "quality</i> for an error map, or tick the option below. Choosing the same layer twice "
            "gives the floor of the metric, the error of the projection itself.<br>"
            "Both layers need per-vertex normals; an original layer without normals gets the "
-           "distances only.<br>"
+           "distances only. They are compared in their own coordinates, so they must share their "
+           "transformation matrix (the resampling's output takes its input's).<br>"
            "Hostile input: original points with a non-finite position are not measured (quality 0), "
            "those with a zero or non-finite normal count for the distances only, and simplified "
            "points with a non-finite position or a zero or non-finite normal are ignored; the log "

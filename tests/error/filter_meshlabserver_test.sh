@@ -5,7 +5,8 @@
 #   2. a layer without normals: the run fails with a message saying so;
 #   3. hostile coordinates: NaN and infinite points are skipped and counted in the log, a
 #      coordinate beyond 1e18 fails the run with a message naming the vertex;
-#   4. when the resampling plugin is staged too: resample, then measure with SurfelIndex.
+#   4. when the resampling plugin is staged too: resample, then measure with SurfelIndex, also on
+#      a layer placed by a matrix; layers under different matrices are refused.
 # Environment (tests/error/CMakeLists.txt): RUN_MESHLABSERVER, MESHLABSERVER_BIN, SAMPLE_DATA,
 # WORK_DIR. Exits 77 (skipped) when the plugin is not staged.
 set -uo pipefail
@@ -80,6 +81,34 @@ if [ -e "$plugins/libfilter_gaussphere.so" ]; then
   "$RUN_MESHLABSERVER" -i "$SAMPLE_DATA/bunny.ply" -s pipeline.mlx > pipeline.log 2>&1
   check "resample then measure succeeds" test $? -eq 0
   check "the own surfel comes from SurfelIndex" grep -q "own surfel (SurfelIndex)" pipeline.log
+
+  # A layer placed by a matrix (moved or aligned in MeshLab, vertices unchanged): the resampled
+  # layer takes the same matrix, and the two measure against each other in their own coordinates.
+  # Layers under different matrices are refused with the way out.
+  cp "$SAMPLE_DATA/bunny.ply" placed.ply
+  # project FILE LAYER_FILE... : a MeshLab project whose layers are placed by the rotation about z
+  # and the translation (10, 20, 30), but for a layer file prefixed by "identity:".
+  project() {
+    local file="$1"; shift
+    { echo '<!DOCTYPE MeshLabDocument>'; echo '<MeshLabProject>'; echo ' <MeshGroup>'
+      for layer in "$@"; do
+        local matrix="0 -1 0 10 1 0 0 20 0 0 1 30 0 0 0 1"
+        case "$layer" in identity:*) layer=${layer#identity:}; matrix="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";; esac
+        echo "  <MLMesh label=\"$layer\" filename=\"$layer\"><MLMatrix44>$matrix</MLMatrix44></MLMesh>"
+      done
+      echo ' </MeshGroup>'; echo ' <RasterGroup/>'; echo '</MeshLabProject>'; } > "$file"
+  }
+  project placed.mlp placed.ply
+  "$RUN_MESHLABSERVER" -p placed.mlp -s pipeline.mlx -w placed_out.mlp > placed.log 2>&1
+  check "a placed layer: resample then measure succeeds" test $? -eq 0
+  check "... the resampled layer has the input's matrix" \
+    test "$(grep -c '^0 -1 0 10 $' placed_out.mlp)" -eq 2
+  cp "$SAMPLE_DATA/bunny.ply" unplaced.ply
+  project apart.mlp placed.ply identity:unplaced.ply
+  { echo "<!DOCTYPE FilterScript>"; echo "<FilterScript>"; error_filter 0 1 false; echo "</FilterScript>"; } > apart.mlx
+  "$RUN_MESHLABSERVER" -p apart.mlp -s apart.mlx > apart.log 2>&1
+  check "layers under different matrices fail the measure" test $? -ne 0
+  check "... naming the way out" grep -q "Matrix: Freeze Current Matrix" apart.log
 else
   echo "note: libfilter_gaussphere.so is not staged, the resample-then-measure run is left out"
 fi
