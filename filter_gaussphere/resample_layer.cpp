@@ -91,25 +91,6 @@ gs::ResamplingParams ParamsFromDialog(ResamplingFilter filter, const RichParamet
     return param;
 }
 
-/// Each surfel takes the mean colour of the points it represents.
-void ColourSurfels(const CMeshO &in, const gs::ResamplingResult &result, CMeshO &out)
-{
-    std::vector<vcg::Point4d> sum(result.surfels.size(), vcg::Point4d(0, 0, 0, 0));
-    std::vector<int> members(result.surfels.size(), 0);
-    for (size_t i = 0; i < in.vert.size(); ++i) {
-        const int c = result.representative[i];
-        if (c < 0) continue;
-        const vcg::Color4b &col = in.vert[i].cC();
-        sum[c] += vcg::Point4d(col[0], col[1], col[2], col[3]);
-        ++members[c];
-    }
-    for (size_t c = 0; c < sum.size(); ++c) {
-        const vcg::Point4d mean = sum[c] / std::max(1, members[c]);
-        out.vert[c].C() = vcg::Color4b((unsigned char)std::lround(mean[0]), (unsigned char)std::lround(mean[1]),
-                                       (unsigned char)std::lround(mean[2]), (unsigned char)std::lround(mean[3]));
-    }
-}
-
 /// Every input point coloured by its cluster (grey: skipped); Scatter spreads neighbouring
 /// indices over distant hues.
 void ColourByCluster(const gs::ResamplingResult &result, CMeshO &in)
@@ -170,7 +151,7 @@ ResampleOutcome ResampleCurrentLayer(ResamplingFilter filter, MeshDocument &md, 
     gs::WriteSurfels(result.surfels, outcome.output->cm);
     if (input->hasDataMask(MeshModel::MM_VERTCOLOR)) {
         outcome.output->updateDataMask(MeshModel::MM_VERTCOLOR);
-        ColourSurfels(in, result, outcome.output->cm);
+        gs::ColourSurfelsByMembers(in, result.representative, outcome.output->cm);
     }
     outcome.log = RunLog(result.stats);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -61,8 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     }
     vcg::gaussphere::OrientedPointMesh mesh;
     std::string error;
-    gsresample::InputPlacement placement; // as gsresample reads: double coordinates near the origin
-    if (!gsresample::ReadOrientedPoints(inputPath, mesh, error, &placement)) {
+    gsresample::InputInfo info; // as gsresample reads: double coordinates near the origin
+    if (!gsresample::ReadOrientedPoints(inputPath, mesh, error, &info)) {
         check(!error.empty(), "a refused file without a reason");
         return 0;
     }

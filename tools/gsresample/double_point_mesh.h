@@ -10,12 +10,17 @@
 namespace gsresample {
 
 class DoublePointVertex;
-struct DoublePointTypes : public vcg::UsedTypes<vcg::Use<DoublePointVertex>::AsVertexType> {};
+class DoublePointFace;
+struct DoublePointTypes : public vcg::UsedTypes<vcg::Use<DoublePointVertex>::AsVertexType,
+                                                vcg::Use<DoublePointFace>::AsFaceType> {};
 class DoublePointVertex
     : public vcg::Vertex<DoublePointTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::Radiusf,
-                         vcg::vertex::Qualityd, vcg::vertex::BitFlags> {}; // Qualityd: vcglib's PLY writer
-                                                                          // types quality as the coordinates
-class DoublePointMesh : public vcg::tri::TriMesh<std::vector<DoublePointVertex>>
+                         vcg::vertex::Qualityd, vcg::vertex::Color4b, vcg::vertex::BitFlags> {}; // Qualityd: vcglib's
+                                                                          // PLY writer types quality as the coordinates
+// A face type, though no face is kept: every vcglib's PLY writer needs one (a mesh without
+// leaves it a const pointer it cannot assign).
+class DoublePointFace : public vcg::Face<DoublePointTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
+class DoublePointMesh : public vcg::tri::TriMesh<std::vector<DoublePointVertex>, std::vector<DoublePointFace>>
 {
 public:
     DoublePointMesh() = default;
@@ -24,11 +29,13 @@ public:
     ~DoublePointMesh() { ClearAttributes(); }
 };
 
-/// Where ReadOrientedPoints put the points: the mesh holds each point minus `origin`.
-struct InputPlacement
+/// What ReadOrientedPoints found in the file, and where it put the points.
+struct InputInfo
 {
     bool doubleCoordinates = false; ///< the file's x, y or z is double
-    vcg::Point3d origin{0, 0, 0};   ///< double coordinates: the centre of their bounding box; else 0
+    vcg::Point3d origin{0, 0, 0};   ///< the mesh holds each point minus this: for double coordinates the
+                                    ///< centre of their bounding box, else 0
+    bool vertexColours = false;     ///< the vertices have colours
 };
 
 } // namespace gsresample

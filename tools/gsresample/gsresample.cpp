@@ -139,13 +139,14 @@ bool SameFile(const std::string &a, const std::string &b)
     return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-/// Writes `mesh` as a binary PLY point set with normals, radius and quality to the prepared
-/// `output`, and puts the file in place; false with a message.
+/// Writes `mesh` as a binary PLY point set with normals, radius, quality and (`colours`) colours
+/// to the prepared `output`, and puts the file in place; false with a message.
 template <class MeshType>
-bool WritePly(const std::string &path, surfel_io::FileReplacement &output, MeshType &mesh, std::string &error)
+bool WritePly(const std::string &path, surfel_io::FileReplacement &output, MeshType &mesh, bool colours,
+              std::string &error)
 {
     const int saveMask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_VERTRADIUS |
-                         vcg::tri::io::Mask::IOM_VERTQUALITY;
+                         vcg::tri::io::Mask::IOM_VERTQUALITY | (colours ? vcg::tri::io::Mask::IOM_VERTCOLOR : 0);
     if (vcg::tri::io::ExporterPLY<MeshType>::Save(mesh, output.writePath().c_str(), saveMask, true) != 0) {
         error = "cannot write " + PathText(path) + ": the PLY writer failed";
         return false;
@@ -153,24 +154,34 @@ bool WritePly(const std::string &path, surfel_io::FileReplacement &output, MeshT
     return output.commit(error);
 }
 
-/// The .surfel records of `surfels`, moved back to where the input lay. The format holds float
+/// The surfels of `result` in `mesh`, each with the mean colour of its points when the input has
+/// colours.
+template <class MeshType>
+void SurfelMesh(const ResamplingResult &result, const OrientedPointMesh &input, const gsresample::InputInfo &info,
+                MeshType &mesh)
+{
+    WriteSurfels(result.surfels, mesh);
+    if (info.vertexColours) ColourSurfelsByMembers(input, result.representative, mesh);
+}
+
+/// The .surfel records of the surfels, moved back to where the input lay. The format holds float
 /// coordinates: when that rounds them coarsely (far from the origin), a warning says so.
-std::vector<surfel_io::SurfelRecord> SurfelRecords(const std::vector<Surfel> &surfels,
-                                                   const gsresample::InputPlacement &placement, double diagonal)
+std::vector<surfel_io::SurfelRecord> SurfelRecords(const ResamplingResult &result, const OrientedPointMesh &input,
+                                                   const gsresample::InputInfo &info)
 {
     OrientedPointMesh mesh;
-    WriteSurfels(surfels, mesh);
+    SurfelMesh(result, input, info, mesh);
     std::vector<surfel_io::SurfelRecord> records = surfel_io::recordsFromMesh(mesh);
-    if (!placement.doubleCoordinates) return records;
+    if (!info.doubleCoordinates) return records;
     double farthest = 0;
     for (surfel_io::SurfelRecord &record : records) {
         for (int d = 0; d < 3; ++d) {
-            const double exact = double(record.position[d]) + placement.origin[d];
+            const double exact = double(record.position[d]) + info.origin[d];
             farthest = std::max(farthest, std::abs(exact));
             record.position[d] = float(exact);
         }
     }
-    const double step = FloatStepAt(farthest);
+    const double step = FloatStepAt(farthest), diagonal = result.stats.diagonal;
     if (step > kCoarseFloatStep * diagonal)
         std::fprintf(stderr, "gsresample: warning: the .surfel format holds float coordinates, which up to %.7g from the "
                      "origin are rounded to steps of %.3g (%.2g of the bounding-box diagonal); a PLY output keeps "
@@ -178,25 +189,26 @@ std::vector<surfel_io::SurfelRecord> SurfelRecords(const std::vector<Surfel> &su
     return records;
 }
 
-/// Writes `surfels` to the prepared `output`, where the input lay (`placement`), and puts the
-/// file in place; false with a message. A PLY output of double-precision input is double too.
+/// Writes the surfels of `result` to the prepared `output`, where the input lay, coloured as it
+/// is (`info`), and puts the file in place; false with a message. A PLY output of
+/// double-precision input is double too.
 bool WriteOutput(const std::string &path, surfel_io::FileReplacement &output, const ResamplingResult &result,
-                 const gsresample::InputPlacement &placement, std::string &error)
+                 const OrientedPointMesh &input, const gsresample::InputInfo &info, std::string &error)
 {
     if (IsSurfelPath(path)) {
-        const std::vector<surfel_io::SurfelRecord> records = SurfelRecords(result.surfels, placement, result.stats.diagonal);
+        const std::vector<surfel_io::SurfelRecord> records = SurfelRecords(result, input, info);
         return output.write([&](std::ostream &out, std::string &reason) { return surfel_io::writeSurfels(out, records, reason); },
                             error);
     }
-    if (!placement.doubleCoordinates) {
+    if (!info.doubleCoordinates) {
         OrientedPointMesh mesh;
-        WriteSurfels(result.surfels, mesh);
-        return WritePly(path, output, mesh, error);
+        SurfelMesh(result, input, info, mesh);
+        return WritePly(path, output, mesh, info.vertexColours, error);
     }
     gsresample::DoublePointMesh mesh;
-    WriteSurfels(result.surfels, mesh);
-    for (gsresample::DoublePointVertex &v : mesh.vert) v.P() += placement.origin;
-    return WritePly(path, output, mesh, error);
+    SurfelMesh(result, input, info, mesh);
+    for (gsresample::DoublePointVertex &v : mesh.vert) v.P() += info.origin;
+    return WritePly(path, output, mesh, info.vertexColours, error);
 }
 
 void PrintFigures(const ResamplingStats &s)
@@ -228,8 +240,8 @@ int Run(int argc, char **argv)
     if (SameFile(line.input, line.output))
         return Fail(2, "the output " + PathText(line.output) + " is the input file: give another output path");
     OrientedPointMesh in;
-    gsresample::InputPlacement placement;
-    if (!gsresample::ReadOrientedPoints(line.input, in, error, &placement))
+    gsresample::InputInfo info;
+    if (!gsresample::ReadOrientedPoints(line.input, in, error, &info))
         return Fail(1, "cannot read " + PathText(line.input) + ": " + error);
     surfel_io::FileReplacement output; // prepared before the resampling: an unwritable path fails at once
     if (!output.open(line.output, error)) return Fail(1, error);
@@ -245,7 +257,7 @@ int Run(int argc, char **argv)
                      "diagonal): %s\n", r.stats.pointsAboveErrorBound, r.stats.surfaceErrorMax, beyond.c_str());
     const std::string coarse = r.stats.CoarsePositionsReason();
     if (!coarse.empty()) std::fprintf(stderr, "gsresample: warning: %s\n", coarse.c_str());
-    if (!WriteOutput(line.output, output, r, placement, error)) return Fail(1, error);
+    if (!WriteOutput(line.output, output, r, in, info, error)) return Fail(1, error);
     return 0;
 }
 

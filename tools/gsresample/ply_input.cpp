@@ -594,12 +594,13 @@ bool ReadOrientedPointHeader(const std::string &path, PlyHeader &header, std::st
 
 namespace {
 
-/// vcglib's ImporterPLY on a file whose header and ASCII body were checked.
+/// vcglib's ImporterPLY on a file whose header and ASCII body were checked; `mask` receives
+/// what it read (vcg::tri::io::Mask).
 template <class MeshType>
-bool ImportChecked(const std::string &path, MeshType &mesh, std::string &error)
+bool ImportChecked(const std::string &path, MeshType &mesh, int &mask, std::string &error)
 {
     typedef vcg::tri::io::ImporterPLY<MeshType> Importer;
-    int mask = 0;
+    mask = 0;
     int status = 0;
     try {
         status = Importer::Open(mesh, path.c_str(), mask);
@@ -646,7 +647,7 @@ vcg::Point3d CentreOfUsablePoints(const DoublePointMesh &exact)
 } // namespace
 
 bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error,
-                        InputPlacement *placement)
+                        InputInfo *info)
 {
     PlyHeader header;
     if (!ReadOrientedPointHeader(path, header, error)) return false;
@@ -654,19 +655,28 @@ bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointM
         error = Bounded(error);
         return false;
     }
-    if (placement) *placement = InputPlacement();
-    if (!placement || !HasDoubleCoordinates(header)) return ImportChecked(path, mesh, error);
-
+    int mask = 0;
+    if (!info || !HasDoubleCoordinates(header)) {
+        if (!ImportChecked(path, mesh, mask, error)) return false;
+        if (info) {
+            *info = InputInfo();
+            info->vertexColours = (mask & vcg::tri::io::Mask::IOM_VERTCOLOR) != 0;
+        }
+        return true;
+    }
     DoublePointMesh exact;
-    if (!ImportChecked(path, exact, error)) return false;
-    placement->doubleCoordinates = true;
-    placement->origin = CentreOfUsablePoints(exact);
+    if (!ImportChecked(path, exact, mask, error)) return false;
+    *info = InputInfo();
+    info->doubleCoordinates = true;
+    info->origin = CentreOfUsablePoints(exact);
+    info->vertexColours = (mask & vcg::tri::io::Mask::IOM_VERTCOLOR) != 0;
     try {
         mesh.Clear();
         auto vi = vcg::tri::Allocator<vcg::gaussphere::OrientedPointMesh>::AddVertices(mesh, exact.vert.size());
         for (const DoublePointVertex &v : exact.vert) {
-            vi->P() = vcg::Point3f::Construct(v.cP() - placement->origin);
+            vi->P() = vcg::Point3f::Construct(v.cP() - info->origin);
             vi->N() = vcg::Point3f::Construct(v.cN());
+            vi->C() = v.cC();
             ++vi;
         }
     } catch (const std::bad_alloc &) {

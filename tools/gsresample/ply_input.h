@@ -73,12 +73,12 @@ bool CheckAsciiBody(const std::string &path, const PlyHeader &header, std::strin
 
 /// Reads an oriented point set (x y z nx ny nz per vertex) from a PLY file. On failure returns false and
 /// sets `error` to one line (at most 200 characters, printable ASCII only) naming the reason.
-/// With `placement`, double coordinates are read in double and moved by the centre of their
-/// bounding box before they become float, so they keep their precision however far from the
-/// origin they lie; `placement` says so and gives the move. Without it, or for float
-/// coordinates, the coordinates are converted as they are.
+/// With `info`, double coordinates are read in double and moved by the centre of their bounding
+/// box before they become float, so they keep their precision however far from the origin they
+/// lie; `info` says so, gives the move and whether the vertices have colours. Without it, or for
+/// float coordinates, the coordinates are converted as they are.
 bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error,
-                        InputPlacement *placement = nullptr);
+                        InputInfo *info = nullptr);
 
 } // namespace gsresample
 

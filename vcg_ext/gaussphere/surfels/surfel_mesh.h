@@ -6,6 +6,7 @@
 #define VCG_EXT_GAUSSPHERE_SURFEL_MESH_H
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <vcg/complex/complex.h>
@@ -43,6 +44,28 @@ void WriteSurfels(const std::vector<Surfel> &surfels, MeshType &mesh)
         ++vi;
     }
     vcg::tri::UpdateBounding<MeshType>::Box(mesh);
+}
+
+/// Gives each vertex s of `out` (one per surfel, as WriteSurfels makes them) the mean colour of
+/// the vertices of `in` that surfel s represents (`representative`, per vertex of `in`: its
+/// surfel, or -1). Precondition: both meshes have per-vertex colours.
+template <class InMesh, class Indices, class OutMesh>
+void ColourSurfelsByMembers(const InMesh &in, const Indices &representative, OutMesh &out)
+{
+    std::vector<vcg::Point4d> sum(out.vert.size(), vcg::Point4d(0, 0, 0, 0));
+    std::vector<int> members(out.vert.size(), 0);
+    for (size_t i = 0; i < in.vert.size(); ++i) {
+        const int s = representative[i];
+        if (s < 0) continue;
+        const vcg::Color4b colour = in.vert[i].cC();
+        sum[size_t(s)] += vcg::Point4d(colour[0], colour[1], colour[2], colour[3]);
+        ++members[size_t(s)];
+    }
+    for (size_t s = 0; s < sum.size(); ++s) {
+        const vcg::Point4d mean = sum[s] / std::max(1, members[s]);
+        out.vert[s].C() = vcg::Color4b((unsigned char)std::lround(mean[0]), (unsigned char)std::lround(mean[1]),
+                                       (unsigned char)std::lround(mean[2]), (unsigned char)std::lround(mean[3]));
+    }
 }
 
 } // namespace gaussphere

@@ -1,7 +1,7 @@
-// Double-precision coordinates far from the origin (georeferenced scans): gsresample reads them
-// near the origin, so the result does not depend on where the model lies, and writes them back in
-// double; float coordinates that far are reported as coarse (tools/gsresample/ply_input.h,
-// double_point_mesh.h).
+// What gsresample's output keeps of its input (tools/gsresample/ply_input.h, double_point_mesh.h):
+// double-precision coordinates far from the origin (georeferenced scans) are read near it, so the
+// result does not depend on where the model lies, and written back in double; float coordinates
+// that far are reported as coarse; vertex colours become each surfel's mean colour.
 #include <unistd.h>
 
 #include <cmath>
@@ -26,12 +26,12 @@ namespace {
 // the bunny is 0.26 m across.
 const vcg::Point3d kFar(500000, 4000000, 100);
 
-class DoubleCoordinates : public ::testing::Test
+class GsresampleOutput : public ::testing::Test
 {
 protected:
     void SetUp() override
     {
-        folder_ = ::testing::TempDir() + "double_coordinates_XXXXXX";
+        folder_ = ::testing::TempDir() + "gsresample_output_XXXXXX";
         ASSERT_NE(::mkdtemp(&folder_[0]), nullptr);
         std::string error;
         ASSERT_TRUE(gsresample::ReadOrientedPoints(std::string(SAMPLE_DIR) + "/bunny.ply", bunny_, error)) << error;
@@ -40,6 +40,21 @@ protected:
     void TearDown() override { std::system(("rm -rf '" + folder_ + "'").c_str()); }
 
     std::string Path(const std::string &name) const { return folder_ + "/" + name; }
+
+    /// The bunny, each point red left of x = `split` and blue right of it.
+    template <class MeshType>
+    std::string WriteTwoColours(const std::string &name, float split)
+    {
+        MeshType mesh;
+        auto vi = vcg::tri::Allocator<MeshType>::AddVertices(mesh, bunny_.vert.size());
+        for (const auto &v : bunny_.vert) {
+            vi->P() = MeshType::CoordType::Construct(v.cP());
+            vi->N() = MeshType::CoordType::Construct(v.cN());
+            vi->C() = v.cP()[0] < split ? vcg::Color4b::Red : vcg::Color4b::Blue;
+            ++vi;
+        }
+        return Save(mesh, name, vcg::tri::io::Mask::IOM_VERTCOLOR);
+    }
 
     /// The bunny moved by `offset`, in double (exactly: its floats and these offsets need fewer
     /// than 53 bits together, but for a few coordinates very near zero).
@@ -91,9 +106,9 @@ protected:
     }
 
     template <class MeshType>
-    std::string Save(MeshType &mesh, const std::string &name)
+    std::string Save(MeshType &mesh, const std::string &name, int extraMask = 0)
     {
-        const int mask = vcg::tri::io::Mask::IOM_VERTNORMAL;
+        const int mask = vcg::tri::io::Mask::IOM_VERTNORMAL | extraMask;
         EXPECT_EQ(vcg::tri::io::ExporterPLY<MeshType>::Save(mesh, Path(name).c_str(), mask, true), 0);
         return Path(name);
     }
@@ -102,29 +117,29 @@ protected:
     OrientedPointMesh bunny_;
 };
 
-TEST_F(DoubleCoordinates, AreReadNearTheOriginAtFullPrecision)
+TEST_F(GsresampleOutput, DoubleCoordinatesAreReadNearTheOriginAtFullPrecision)
 {
     const std::string input = WriteDouble("far.ply", kFar);
     OrientedPointMesh mesh;
-    gsresample::InputPlacement placement;
+    gsresample::InputInfo info;
     std::string error;
-    ASSERT_TRUE(gsresample::ReadOrientedPoints(input, mesh, error, &placement)) << error;
-    ASSERT_TRUE(placement.doubleCoordinates);
+    ASSERT_TRUE(gsresample::ReadOrientedPoints(input, mesh, error, &info)) << error;
+    ASSERT_TRUE(info.doubleCoordinates);
     vcg::Box3d box;
     for (const auto &v : bunny_.vert) box.Add(vcg::Point3d::Construct(v.cP()));
-    EXPECT_LT((placement.origin - (box.Center() + kFar)).Norm(), 1e-9);
+    EXPECT_LT((info.origin - (box.Center() + kFar)).Norm(), 1e-9);
     ASSERT_EQ(mesh.vert.size(), bunny_.vert.size());
     for (size_t i = 0; i < mesh.vert.size(); ++i) {
         const vcg::Point3d expected = vcg::Point3d::Construct(bunny_.vert[i].cP()) - box.Center();
         ASSERT_LT((vcg::Point3d::Construct(mesh.vert[i].cP()) - expected).Norm(), 1e-7) << "vertex " << i;
     }
-    // Without a placement to report the move, double coordinates become float as they are.
+    // Without an InputInfo to report the move, double coordinates become float as they are.
     OrientedPointMesh plain;
     ASSERT_TRUE(gsresample::ReadOrientedPoints(input, plain, error)) << error;
     EXPECT_EQ(plain.vert[0].cP(), vcg::Point3f::Construct(vcg::Point3d::Construct(bunny_.vert[0].cP()) + kFar));
 }
 
-TEST_F(DoubleCoordinates, GiveTheSameSurfelsWhereverTheModelLies)
+TEST_F(GsresampleOutput, DoubleCoordinatesGiveTheSameSurfelsWhereverTheModelLies)
 {
     std::string err;
     ASSERT_EQ(Resample(WriteDouble("near.ply", vcg::Point3d(0, 0, 0)), Path("near_out.ply"), err), 0) << err;
@@ -146,7 +161,7 @@ TEST_F(DoubleCoordinates, GiveTheSameSurfelsWhereverTheModelLies)
     }
 }
 
-TEST_F(DoubleCoordinates, FloatCoordinatesThatFarAreReportedCoarse)
+TEST_F(GsresampleOutput, DoubleCoordinatesFloatCoordinatesThatFarAreReportedCoarse)
 {
     std::string err;
     ASSERT_EQ(Resample(WriteFloat("far_float.ply", kFar), Path("far_float_out.ply"), err), 0) << err;
@@ -155,13 +170,48 @@ TEST_F(DoubleCoordinates, FloatCoordinatesThatFarAreReportedCoarse)
     EXPECT_NE(err.find("held in steps of 0.25"), std::string::npos) << err;
 }
 
-TEST_F(DoubleCoordinates, SurfelOutputWarnsOfItsFloatCoordinates)
+TEST_F(GsresampleOutput, DoubleCoordinatesSurfelOutputWarnsOfItsFloatCoordinates)
 {
     std::string err;
     ASSERT_EQ(Resample(WriteDouble("far.ply", kFar), Path("far_out.surfel"), err), 0) << err;
     EXPECT_NE(err.find("the .surfel format holds float coordinates"), std::string::npos) << err;
     ASSERT_EQ(Resample(WriteDouble("near.ply", vcg::Point3d(0, 0, 0)), Path("near_out.surfel"), err), 0) << err;
     EXPECT_EQ(err, "");
+}
+
+// Each surfel takes the mean colour of its points: on a bunny red on one side of a plane and blue
+// on the other, every surfel is a mix of the two, those away from the plane pure, in float and in
+// double input alike; an input without colours gives an output without them.
+TEST_F(GsresampleOutput, ColoursAreTheMeanOfTheSurfelsPoints)
+{
+    const float split = -0.02f; // through the bunny's middle
+    for (const std::string &input : {WriteTwoColours<OrientedPointMesh>("coloured.ply", split),
+                                     WriteTwoColours<DoublePointMesh>("coloured_double.ply", split)}) {
+        std::string err;
+        const std::string output = input + ".out.ply";
+        ASSERT_EQ(Resample(input, output, err), 0) << err;
+        EXPECT_NE(HeaderOf(output).find("property uchar red\nproperty uchar green\nproperty uchar blue\n"),
+                  std::string::npos) << HeaderOf(output);
+        OrientedPointMesh out;
+        int mask = 0;
+        ASSERT_EQ(vcg::tri::io::ImporterPLY<OrientedPointMesh>::Open(out, output.c_str(), mask), 0);
+        ASSERT_TRUE(mask & vcg::tri::io::Mask::IOM_VERTCOLOR);
+        int pureRed = 0, pureBlue = 0;
+        for (const auto &v : out.vert) {
+            const vcg::Color4b c = v.cC();
+            ASSERT_EQ(int(c[1]), 0);
+            ASSERT_NEAR(int(c[0]) + int(c[2]), 255, 1) << "a mix of red and blue (each mean rounded)";
+            const bool red = c[0] == 255, blue = c[2] == 255;
+            if (std::abs(v.cP()[0] - split) > 0.01f) ASSERT_TRUE(red || blue) << "away from the split";
+            pureRed += red;
+            pureBlue += blue;
+        }
+        EXPECT_GT(pureRed, int(out.vert.size()) / 4);
+        EXPECT_GT(pureBlue, int(out.vert.size()) / 4);
+    }
+    std::string err;
+    ASSERT_EQ(Resample(std::string(SAMPLE_DIR) + "/bunny.ply", Path("plain_out.ply"), err), 0) << err;
+    EXPECT_EQ(HeaderOf(Path("plain_out.ply")).find("red"), std::string::npos);
 }
 
 } // namespace
