@@ -181,8 +181,8 @@ std::vector<surfel_io::SurfelRecord> SurfelRecords(const ResamplingResult &resul
             record.position[d] = float(exact);
         }
     }
-    const double step = FloatStepAt(farthest), diagonal = result.stats.diagonal;
-    if (step > kCoarseFloatStep * diagonal)
+    const double diagonal = result.stats.diagonal, step = CoarseFloatStep(farthest, diagonal);
+    if (step > 0)
         std::fprintf(stderr, "gsresample: warning: the .surfel format holds float coordinates, which up to %.7g from the "
                      "origin are rounded to steps of %.3g (%.2g of the bounding-box diagonal); a PLY output keeps "
                      "the input's double coordinates\n", farthest, step, step / diagonal);

@@ -644,6 +644,30 @@ vcg::Point3d CentreOfUsablePoints(const DoublePointMesh &exact)
     return box.IsNull() ? vcg::Point3d(0, 0, 0) : box.Center();
 }
 
+/// The double points of `exact` moved by the centre of their box into the float `mesh`, the move
+/// in `info`; false with a message when memory runs out.
+bool MoveNearOrigin(const DoublePointMesh &exact, vcg::gaussphere::OrientedPointMesh &mesh, InputInfo &info,
+                    std::string &error)
+{
+    info = InputInfo();
+    info.doubleCoordinates = true;
+    info.origin = CentreOfUsablePoints(exact);
+    try {
+        mesh.Clear();
+        auto vi = vcg::tri::Allocator<vcg::gaussphere::OrientedPointMesh>::AddVertices(mesh, exact.vert.size());
+        for (const DoublePointVertex &v : exact.vert) {
+            vi->P() = vcg::Point3f::Construct(v.cP() - info.origin);
+            vi->N() = vcg::Point3f::Construct(v.cN());
+            vi->C() = v.cC();
+            ++vi;
+        }
+    } catch (const std::bad_alloc &) {
+        error = "not enough memory for the points";
+        return false;
+    }
+    return true;
+}
+
 } // namespace
 
 bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointMesh &mesh, std::string &error,
@@ -658,31 +682,12 @@ bool ReadOrientedPoints(const std::string &path, vcg::gaussphere::OrientedPointM
     int mask = 0;
     if (!info || !HasDoubleCoordinates(header)) {
         if (!ImportChecked(path, mesh, mask, error)) return false;
-        if (info) {
-            *info = InputInfo();
-            info->vertexColours = (mask & vcg::tri::io::Mask::IOM_VERTCOLOR) != 0;
-        }
-        return true;
+        if (info) *info = InputInfo();
+    } else {
+        DoublePointMesh exact;
+        if (!ImportChecked(path, exact, mask, error) || !MoveNearOrigin(exact, mesh, *info, error)) return false;
     }
-    DoublePointMesh exact;
-    if (!ImportChecked(path, exact, mask, error)) return false;
-    *info = InputInfo();
-    info->doubleCoordinates = true;
-    info->origin = CentreOfUsablePoints(exact);
-    info->vertexColours = (mask & vcg::tri::io::Mask::IOM_VERTCOLOR) != 0;
-    try {
-        mesh.Clear();
-        auto vi = vcg::tri::Allocator<vcg::gaussphere::OrientedPointMesh>::AddVertices(mesh, exact.vert.size());
-        for (const DoublePointVertex &v : exact.vert) {
-            vi->P() = vcg::Point3f::Construct(v.cP() - info->origin);
-            vi->N() = vcg::Point3f::Construct(v.cN());
-            vi->C() = v.cC();
-            ++vi;
-        }
-    } catch (const std::bad_alloc &) {
-        error = "not enough memory for the points";
-        return false;
-    }
+    if (info) info->vertexColours = (mask & vcg::tri::io::Mask::IOM_VERTCOLOR) != 0;
     return true;
 }
 

@@ -117,8 +117,7 @@ bool Merge(const std::string &dir, const Manifest &manifest, const std::string &
         for (int a = 0; a < 3; ++a)
             farthest = std::max({farthest, std::abs(manifest.origin[size_t(a)] + manifest.boxMin[size_t(a)]),
                                  std::abs(manifest.origin[size_t(a)] + manifest.boxMax[size_t(a)])});
-        const double step = vcg::gaussphere::FloatStepAt(farthest);
-        if (step > vcg::gaussphere::kCoarseFloatStep * manifest.diagonal) figures.coarseStep = step;
+        figures.coarseStep = vcg::gaussphere::CoarseFloatStep(farthest, manifest.diagonal);
     }
     return WriteAtomically(output, [&](std::ostream &out, std::string &reason) {
         if (surfelFormat) surfel_io::writeSurfelHeader(out, figures.surfels);

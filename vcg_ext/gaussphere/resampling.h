@@ -140,12 +140,12 @@ struct ResamplingStats
         return SurfaceBoundCapped() ? "the refinement stopped at its cap of projection rounds"
                                     : "the surfels around them are split and narrowed as far as they go";
     }
-    /// When the input's float coordinates are coarse (kCoarseFloatStep): what that does and what to
+    /// When the input's float coordinates are coarse (CoarseFloatStep): what that does and what to
     /// do; empty otherwise.
     std::string CoarsePositionsReason() const
     {
-        const double step = FloatStepAt(farthestCoordinate);
-        if (!(diagonal > 0) || step <= kCoarseFloatStep * diagonal) return std::string();
+        const double step = CoarseFloatStep(farthestCoordinate, diagonal);
+        if (step == 0) return std::string();
         char text[400];
         std::snprintf(text, sizeof text,
                       "the points lie up to %.7g units from the origin, %.0f times their bounding-box diagonal: float "
@@ -291,7 +291,6 @@ struct Run
     FlatVector<char> limited; ///< per point: at a crease or on the rim, where clusters are kept small
     double scale = 1;       ///< unit scale = scale x the model's
     double diagonal = 0;    ///< of the points, at unit scale
-    double farthest = 0;    ///< the largest magnitude of a coordinate, at the model's scale
     double weightWidth = 0; ///< h of the surfel normal weights, at unit scale
     ClusterNormalizationParams normalization;
     Clustering clusters;
@@ -332,13 +331,13 @@ void ReadPoints(const MeshType &mesh, Run &run)
     vcg::Box3f box;
     for (const auto &p : run.points) box.Add(p);
     for (int d = 0; d < 3; ++d)
-        run.farthest = std::max({run.farthest, std::abs(double(box.min[d])), std::abs(double(box.max[d]))});
+        stats.farthestCoordinate = std::max({stats.farthestCoordinate, std::abs(double(box.min[d])),
+                                             std::abs(double(box.max[d]))});
     const UnitScaleBox unit = MeasureUnitScale(box);
     run.scale = unit.scale;
     ScalePoints(run.scale, run.points);
     run.diagonal = unit.diagonal;
     stats.diagonal = run.diagonal / run.scale;
-    stats.farthestCoordinate = run.farthest;
     run.weightWidth = run.param.weightWidth > 0 ? run.param.weightWidth * run.scale : 0.01 * run.diagonal;
 }
 
@@ -778,7 +777,7 @@ inline void Finish(Run &run, ResamplingResult &result)
         stats.normalErrorMax = std::max(stats.normalErrorMax, e);
     }
     stats.normalErrorRms = std::sqrt(sumSquares / n);
-    if (!ScaleSurfels(1.0 / run.scale, result.surfels)) throw std::overflow_error(OverflowMessage(stats.diagonal, run.farthest));
+    if (!ScaleSurfels(1.0 / run.scale, result.surfels)) throw std::overflow_error(OverflowMessage(stats.diagonal, stats.farthestCoordinate));
     stats.outputCount = int(result.surfels.size());
     stats.secondsSurfels = run.timer.Lap();
 }

@@ -144,6 +144,14 @@ inline double FloatStepAt(double magnitude)
 /// ones. At the model's own scale the step is 2^-23 of its size.
 constexpr double kCoarseFloatStep = 1e-5;
 
+/// The step of float coordinates up to `farthest` from the origin when it is coarse for a model
+/// of that bounding-box `diagonal` (kCoarseFloatStep), else 0.
+inline double CoarseFloatStep(double farthest, double diagonal)
+{
+    const double step = FloatStepAt(farthest);
+    return diagonal > 0 && step > kCoarseFloatStep * diagonal ? step : 0;
+}
+
 /// How the resampler measures points whose bounding box is `box` (model units).
 struct UnitScaleBox
 {
