@@ -26,7 +26,7 @@ Clustering OneCluster(int n)
     return c;
 }
 
-ClusterNormalizationParams Params(double threshold = 6.0, int minSplitSize = 6)
+ClusterNormalizationParams NormalizationParams(double threshold = 6.0, int minSplitSize = 6)
 {
     ClusterNormalizationParams p;
     p.threshold = threshold;
@@ -40,7 +40,7 @@ void ExpectGridSplit(int a, int b, double threshold, bool expectSplit)
 {
     const gstest::PointSet s = gstest::PlaneGrid(a, b);
     Clustering c = OneCluster(s.Size());
-    const int split = SplitElongatedClusters(s.points, Params(threshold), c);
+    const int split = SplitElongatedClusters(s.points, NormalizationParams(threshold), c);
     SCOPED_TRACE(testing::Message() << a << " x " << b << ", ratio " << (a * a - 1.0) / (b * b - 1.0)
                                     << ", threshold " << threshold);
     if (!expectSplit) {
@@ -87,7 +87,7 @@ TEST(ClusterNormalization, DiscIsNotSplit)
         if (p.Norm() <= 1) s.Add(p, P3(0, 0, 1));
     }
     Clustering c = OneCluster(s.Size());
-    EXPECT_EQ(SplitElongatedClusters(s.points, Params(), c), 0);
+    EXPECT_EQ(SplitElongatedClusters(s.points, NormalizationParams(), c), 0);
     EXPECT_EQ(c.clusterCount, 1);
 }
 
@@ -102,7 +102,7 @@ TEST(ClusterNormalization, SkewStripIsCutPerpendicularToItsAxis)
     for (int i = 0; i < 30; ++i)
         for (int j = 0; j < 3; ++j) pts.push_back(along * float(i) + across * float(j) + P3(5, -3, 1));
     Clustering c = OneCluster(int(pts.size()));
-    ASSERT_EQ(SplitElongatedClusters(pts, Params(), c), 1);
+    ASSERT_EQ(SplitElongatedClusters(pts, NormalizationParams(), c), 1);
     for (size_t k = 0; k < pts.size(); ++k) {
         const int i = int(k) / 3; // position along the strip; centroid at i = 14.5
         EXPECT_EQ(c.label[k], c.label[i < 15 ? 0 : pts.size() - 1]) << "point " << k;
@@ -116,10 +116,10 @@ TEST(ClusterNormalization, SmallClustersAreNotSplit)
 {
     const PointArray line = gstest::PlaneGrid(5, 1).points;
     Clustering c = OneCluster(5);
-    EXPECT_EQ(SplitElongatedClusters(line, Params(6.0, 6), c), 0);
+    EXPECT_EQ(SplitElongatedClusters(line, NormalizationParams(6.0, 6), c), 0);
     EXPECT_EQ(c.clusterCount, 1);
     Clustering d = OneCluster(5);
-    EXPECT_EQ(SplitElongatedClusters(line, Params(6.0, 5), d), 1);
+    EXPECT_EQ(SplitElongatedClusters(line, NormalizationParams(6.0, 5), d), 1);
     // Centroid at x = 2: points 0, 1 on one side, 3, 4 on the other, 2 on the plane stays.
     EXPECT_EQ(d.label[0], d.label[1]);
     EXPECT_EQ(d.label[3], d.label[4]);
@@ -132,7 +132,7 @@ TEST(ClusterNormalization, CoincidentPointsAreNotSplit)
 {
     const PointArray pts(20, P3(1, 1, 1));
     Clustering c = OneCluster(20);
-    EXPECT_EQ(SplitElongatedClusters(pts, Params(6.0, 2), c), 0);
+    EXPECT_EQ(SplitElongatedClusters(pts, NormalizationParams(6.0, 2), c), 0);
     EXPECT_EQ(c.clusterCount, 1);
 }
 
@@ -152,7 +152,7 @@ TEST(ClusterNormalization, OnlyElongatedClustersChangeAndNewLabelsAreAppended)
     Clustering c;
     c.label = label;
     c.clusterCount = 3;
-    EXPECT_EQ(SplitElongatedClusters(pts, Params(), c), 2);
+    EXPECT_EQ(SplitElongatedClusters(pts, NormalizationParams(), c), 2);
     EXPECT_EQ(c.clusterCount, 5);
     for (size_t i = 0; i < pts.size(); ++i) {
         if (label[i] == 0 || label[i] == -1) EXPECT_EQ(c.label[i], label[i]);
@@ -210,7 +210,7 @@ int SplitsOfSquare(const ClusterNormalizationParams &base, bool atCrease)
 // general limit.
 TEST(ClusterNormalization, CreaseClustersGetTheTighterCap)
 {
-    ClusterNormalizationParams p = Params();
+    ClusterNormalizationParams p = NormalizationParams();
     p.maxClusterSize = 64;
     p.creaseClusterSize = 5;
     EXPECT_EQ(SplitsOfSquare(p, false), 0) << "36 points, below the general cap of 64";
@@ -221,7 +221,7 @@ TEST(ClusterNormalization, CreaseClustersGetTheTighterCap)
 // leaves the general cap in force.
 TEST(ClusterNormalization, CreaseLimitsNeverLoosenTheGeneralOnes)
 {
-    ClusterNormalizationParams p = Params();
+    ClusterNormalizationParams p = NormalizationParams();
     p.maxClusterSize = 16;
     p.creaseClusterSize = 0;
     EXPECT_EQ(SplitsOfSquare(p, true), 1) << "36 points, above the general cap of 16";

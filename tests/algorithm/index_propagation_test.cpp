@@ -54,7 +54,7 @@ Clustering Propagate(const PointArray &normals, const IndexArray &triangle, cons
     return c;
 }
 
-IndexPropagationParams Params(int depth)
+IndexPropagationParams PropagationParams(int depth)
 {
     IndexPropagationParams p;
     p.maxDepth = depth;
@@ -71,13 +71,13 @@ TEST(IndexPropagation, DepthLimitOnAPathGivesKnownCounts)
     const PointArray normals(n, P3(0, 0, 1));
     const IndexArray triangle(n, 0);
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n));
-    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(1)).clusterCount, 100);
-    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), Params(6)).clusterCount, 29);
-    const Clustering unlimited = Propagate(normals, triangle, g, Identity(n), Params(0));
+    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), PropagationParams(1)).clusterCount, 100);
+    EXPECT_EQ(Propagate(normals, triangle, g, Identity(n), PropagationParams(6)).clusterCount, 29);
+    const Clustering unlimited = Propagate(normals, triangle, g, Identity(n), PropagationParams(0));
     EXPECT_EQ(unlimited.clusterCount, 1);
     for (int l : unlimited.label) EXPECT_EQ(l, 0);
     // Depth 6: the runs are exactly 0..6, 7..13, ...
-    const Clustering d6 = Propagate(normals, triangle, g, Identity(n), Params(6));
+    const Clustering d6 = Propagate(normals, triangle, g, Identity(n), PropagationParams(6));
     for (int i = 0; i < n; ++i) EXPECT_EQ(d6.label[i], i / 7) << i;
 }
 
@@ -90,7 +90,7 @@ TEST(IndexPropagation, UnlimitedDepthGivesOneClusterPerComponent)
     const NeighborGraph g = gstest::MakeGraph(PathAdjacency(n, 119)); // components 0..119, 120..199
     IndexArray order = Identity(n);
     std::shuffle(order.begin(), order.end(), std::mt19937(3));
-    const Clustering c = Propagate(normals, triangle, g, order, Params(0));
+    const Clustering c = Propagate(normals, triangle, g, order, PropagationParams(0));
     ASSERT_EQ(c.clusterCount, 2);
     for (int i = 0; i < n; ++i) EXPECT_EQ(c.label[i], c.label[i < 120 ? 0 : 199]) << i;
     EXPECT_NE(c.label[0], c.label[199]);
@@ -108,9 +108,9 @@ TEST(IndexPropagation, DepthLimitOnStripsDecreasesClusterCount)
     ap.k = 8;
     const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
     const IndexArray triangle(s.Size(), 5);
-    const int c1 = Propagate(s.normals, triangle, g, tree.Order(), Params(1)).clusterCount;
-    const int c6 = Propagate(s.normals, triangle, g, tree.Order(), Params(6)).clusterCount;
-    const Clustering c0 = Propagate(s.normals, triangle, g, tree.Order(), Params(0));
+    const int c1 = Propagate(s.normals, triangle, g, tree.Order(), PropagationParams(1)).clusterCount;
+    const int c6 = Propagate(s.normals, triangle, g, tree.Order(), PropagationParams(6)).clusterCount;
+    const Clustering c0 = Propagate(s.normals, triangle, g, tree.Order(), PropagationParams(0));
     EXPECT_GT(c1, c6);
     EXPECT_GT(c6, c0.clusterCount);
     ASSERT_EQ(c0.clusterCount, 2);
@@ -183,7 +183,7 @@ struct BumpyGrid
 TEST(IndexPropagation, BumpyFixtureSpansMoreThanTheRadiusInsideTriangles)
 {
     static const BumpyGrid d;
-    const double r = Params(0).inscribedRadius;
+    const double r = PropagationParams(0).inscribedRadius;
     std::map<int, std::vector<int>> byTriangle;
     for (int i = 0; i < d.s.Size(); ++i) byTriangle[d.triangle[i]].push_back(i);
     int wide = 0;
@@ -200,7 +200,7 @@ class IndexPropagationOnBumps : public ::testing::Test
 {
 protected:
     static const BumpyGrid &Data() { static const BumpyGrid g; return g; }
-    static float Radius2() { const double r = Params(0).inscribedRadius; return float(r * r) * 1.0001f; }
+    static float Radius2() { const double r = PropagationParams(0).inscribedRadius; return float(r * r) * 1.0001f; }
 };
 
 // Every point is labelled, each cluster lies in its seed's Gaussian triangle, every
@@ -210,7 +210,7 @@ TEST_F(IndexPropagationOnBumps, SeedReferenceBoundsNormalsAndSharesTriangle)
 {
     const BumpyGrid &d = Data();
     for (int depth : {0, 1, 6}) {
-        const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(depth));
+        const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(depth));
         const IndexArray seed = d.Seeds(c);
         const IndexArray hops = d.HopsFromSeed(c);
         for (int i = 0; i < d.s.Size(); ++i) {
@@ -234,7 +234,7 @@ TEST_F(IndexPropagationOnBumps, SeedReferenceBoundsNormalsAndSharesTriangle)
 TEST_F(IndexPropagationOnBumps, UnlimitedClustersAreMaximal)
 {
     const BumpyGrid &d = Data();
-    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(0));
+    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(0));
     const IndexArray seed = d.Seeds(c);
     for (int i = 0; i < d.s.Size(); ++i) {
         const int l = c.label[i], root = seed[l];
@@ -251,7 +251,7 @@ TEST_F(IndexPropagationOnBumps, UnlimitedClustersAreMaximal)
 TEST_F(IndexPropagationOnBumps, DepthLimitedLabellingCoversEveryPoint)
 {
     const BumpyGrid &d = Data();
-    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
+    const Clustering c = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6));
     const IndexArray seed = d.Seeds(c);
     const IndexArray hops = d.HopsFromSeed(c);
     const auto sizes = gstest::ClusterSizes(c.label);
@@ -277,12 +277,12 @@ TEST_F(IndexPropagationOnBumps, ThreadCountDoesNotChangeLabelsAndLabelsFollowSee
     for (int s = 0; s < d.s.Size(); ++s) positionOf[d.seedOrder[s]] = s;
     const int threadsBefore = omp_get_max_threads();
     omp_set_num_threads(1);
-    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), initial);
+    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6), initial);
     const IndexArray seed = d.Seeds(one);
     for (int l = 1; l < one.clusterCount; ++l) EXPECT_LT(positionOf[seed[l - 1]], positionOf[seed[l]]);
     for (int threads : {2, 3, 7}) {
         omp_set_num_threads(threads);
-        const Clustering many = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), initial);
+        const Clustering many = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6), initial);
         EXPECT_EQ(many.clusterCount, one.clusterCount) << threads << " threads";
         EXPECT_EQ(many.label, one.label) << threads << " threads";
     }
@@ -297,7 +297,7 @@ TEST_F(IndexPropagationOnBumps, AThreadTeamSmallerThanAskedGivesTheSameLabels)
     const int threadsBefore = omp_get_max_threads();
     const int nestedBefore = omp_get_max_active_levels();
     omp_set_num_threads(1);
-    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
+    const Clustering one = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6));
     omp_set_num_threads(4);
     omp_set_max_active_levels(1);
     Clustering inner;
@@ -307,7 +307,7 @@ TEST_F(IndexPropagationOnBumps, AThreadTeamSmallerThanAskedGivesTheSameLabels)
 #pragma omp single
         {
             asked = omp_get_max_threads();
-            inner = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6));
+            inner = Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6));
         }
     }
     omp_set_max_active_levels(nestedBefore);
@@ -328,7 +328,7 @@ TEST_F(IndexPropagationOnBumps, ProgressRisesAndACancelStopsTheLabelling)
         std::vector<double> seen;
         Clustering c;
         c.label.assign(d.s.Size(), 0);
-        EXPECT_TRUE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), c, [&](double f) {
+        EXPECT_TRUE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6), c, [&](double f) {
             seen.push_back(f);
             return true;
         }));
@@ -340,7 +340,7 @@ TEST_F(IndexPropagationOnBumps, ProgressRisesAndACancelStopsTheLabelling)
         }
         int calls = 0;
         c.label.assign(d.s.Size(), 0);
-        EXPECT_FALSE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6), c, [&](double) {
+        EXPECT_FALSE(PropagateIndices(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6), c, [&](double) {
             return ++calls < 3;
         })) << threads << " threads";
         EXPECT_GT(std::count(c.label.begin(), c.label.end(), detail::kUnlabelled), 0)
@@ -359,11 +359,11 @@ TEST_F(IndexPropagationOnBumps, EmptySeedOrderIsThePointOrder)
     const int threadsBefore = omp_get_max_threads();
     for (int threads : {1, 2}) {
         omp_set_num_threads(threads);
-        const Clustering given = Propagate(d.s.normals, d.triangle, d.graph, identity, Params(6));
-        const Clustering empty = Propagate(d.s.normals, d.triangle, d.graph, IndexArray(), Params(6));
+        const Clustering given = Propagate(d.s.normals, d.triangle, d.graph, identity, PropagationParams(6));
+        const Clustering empty = Propagate(d.s.normals, d.triangle, d.graph, IndexArray(), PropagationParams(6));
         EXPECT_EQ(empty.clusterCount, given.clusterCount) << threads << " threads";
         EXPECT_EQ(empty.label, given.label) << threads << " threads";
-        EXPECT_NE(Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, Params(6)).label, empty.label)
+        EXPECT_NE(Propagate(d.s.normals, d.triangle, d.graph, d.seedOrder, PropagationParams(6)).label, empty.label)
             << "the fixture's seed order gives other labels: the comparison can fail";
     }
     omp_set_num_threads(threadsBefore);
@@ -386,7 +386,7 @@ TEST(IndexPropagation, InSeedOrderClustersAwayFromACutDoNotDependOnThePointsBeyo
         ap.k = 8;
         const NeighborGraph g = BuildAdaptiveNeighbors(s.points, s.normals, ap, tree);
         const IndexArray order = seedOrder ? SeedOrder(s.points) : MortonOrder(s.points);
-        return Propagate(s.normals, IndexArray(s.Size(), 0), g, order, Params(6));
+        return Propagate(s.normals, IndexArray(s.Size(), 0), g, order, PropagationParams(6));
     };
     // How many points x >= 180 the part clusters otherwise than the whole (a cluster of the part
     // matched to the whole's cluster of its first such point).
@@ -463,7 +463,7 @@ TEST(IndexPropagation, ExcludedPointsStayExcluded)
     IndexArray initial(n, 0);
     initial[20] = -1;
     initial[0] = -1;
-    const Clustering c = Propagate(normals, triangle, g, Identity(n), Params(0), initial);
+    const Clustering c = Propagate(normals, triangle, g, Identity(n), PropagationParams(0), initial);
     EXPECT_EQ(c.label[0], -1);
     EXPECT_EQ(c.label[20], -1);
     EXPECT_EQ(c.clusterCount, 2);
@@ -480,7 +480,7 @@ TEST(IndexPropagation, DifferentTrianglesNeverShareALabel)
     const PointArray normals(n, P3(0, 0, 1));
     IndexArray triangle(n);
     for (int i = 0; i < n; ++i) triangle[i] = (i / 5) % 2; // runs of 5 alternate
-    const Clustering c = Propagate(normals, triangle, gstest::MakeGraph(PathAdjacency(n)), Identity(n), Params(0));
+    const Clustering c = Propagate(normals, triangle, gstest::MakeGraph(PathAdjacency(n)), Identity(n), PropagationParams(0));
     EXPECT_EQ(c.clusterCount, 6);
     for (int i = 0; i < n; ++i) EXPECT_EQ(c.label[i], i / 5);
 }

@@ -15,7 +15,7 @@ namespace {
 using namespace vcg::gaussphere;
 using gstest::P3;
 
-SurfelGenerationParams Params(double h = 0.1, double margin = 0.75)
+SurfelGenerationParams GenerationParams(double h = 0.1, double margin = 0.75)
 {
     SurfelGenerationParams p;
     p.weightWidth = h;
@@ -85,7 +85,7 @@ TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
     IndexArray label;
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 40; ++j) label.push_back((i / 8) * 4 + j / 10); // 5 x 4 blocks of 8 x 10
-    const std::vector<Surfel> a = Generate(cyl, label, Params());
+    const std::vector<Surfel> a = Generate(cyl, label, GenerationParams());
     ASSERT_EQ(a.size(), 20u);
     ExpectValidSurfels(a, cyl, label);
 
@@ -93,7 +93,7 @@ TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
     IndexArray sphLabel;
     for (const P3 &n : sph.normals) // octants x 4 latitude bands
         sphLabel.push_back((n[0] < 0) + 2 * (n[1] < 0) + 4 * std::min(3, int((n[2] + 1) * 2)));
-    const std::vector<Surfel> b = Generate(sph, sphLabel, Params(0.5));
+    const std::vector<Surfel> b = Generate(sph, sphLabel, GenerationParams(0.5));
     ASSERT_EQ(b.size(), 16u);
     ExpectValidSurfels(b, sph, sphLabel);
 }
@@ -104,12 +104,12 @@ TEST(SurfelGeneration, CurvedClustersGiveValidFramesThatContainTheirMembers)
 TEST(SurfelGeneration, MajorAxisFollowsTheLongerSpread)
 {
     const gstest::PointSet longZ = CylinderPatch(0.3, 2.0, 7, 41);
-    const std::vector<Surfel> a = Generate(longZ, IndexArray(longZ.Size(), 0), Params(10));
+    const std::vector<Surfel> a = Generate(longZ, IndexArray(longZ.Size(), 0), GenerationParams(10));
     ExpectValidSurfels(a, longZ, IndexArray(longZ.Size(), 0));
     EXPECT_GT(std::abs(a[0].majorAxis[2]) / a[0].majorAxis.Norm(), 0.999);
 
     const gstest::PointSet wideT = CylinderPatch(1.0, 0.2, 41, 5);
-    const std::vector<Surfel> b = Generate(wideT, IndexArray(wideT.Size(), 0), Params(10));
+    const std::vector<Surfel> b = Generate(wideT, IndexArray(wideT.Size(), 0), GenerationParams(10));
     ExpectValidSurfels(b, wideT, IndexArray(wideT.Size(), 0));
     EXPECT_LT(std::abs(b[0].majorAxis[2]) / b[0].majorAxis.Norm(), 1e-3);
     // The mean normal of the symmetric arc points to theta = 0.5.
@@ -128,7 +128,7 @@ TEST(SurfelGeneration, FlatClusterUsesPositionAxesWithKnownLengths)
     for (P3 &p : s.points) p += P3(3, -2, 7);
     const float spacing = 1.f;
     const IndexArray label(s.Size(), 0);
-    const std::vector<Surfel> f = Generate(s, label, Params(100), spacing);
+    const std::vector<Surfel> f = Generate(s, label, GenerationParams(100), spacing);
     ASSERT_EQ(f.size(), 1u);
     ExpectValidSurfels(f, s, label);
     EXPECT_NEAR(f[0].position[0], 8, 1e-5);
@@ -150,7 +150,7 @@ TEST(SurfelGeneration, CurvedClusterSurfelSitsOnTheSurface)
         if (sphere.points[i][2] > std::cos(30 * M_PI / 180)) cap.Add(sphere.points[i], sphere.normals[i]);
     ASSERT_GT(cap.Size(), 500);
     const IndexArray label(cap.Size(), 0);
-    const std::vector<Surfel> f = Generate(cap, label, Params(10), 0.01f);
+    const std::vector<Surfel> f = Generate(cap, label, GenerationParams(10), 0.01f);
     ExpectValidSurfels(f, cap, label);
     P3 centroid(0, 0, 0);
     for (const P3 &p : cap.points) centroid += p;
@@ -169,7 +169,7 @@ TEST(SurfelGeneration, SinglePointGetsACircleOfMarginTimesSpacing)
     for (const P3 &n : {P3(0, 0, 1), P3(1, 0, 0), P3(0, -1, 0), P3(0.6f, 0, -0.8f)}) {
         gstest::PointSet s;
         s.Add(P3(1, 2, 3), n);
-        const std::vector<Surfel> f = Generate(s, {0}, Params(0.1, 0.75), 0.2f);
+        const std::vector<Surfel> f = Generate(s, {0}, GenerationParams(0.1, 0.75), 0.2f);
         ASSERT_EQ(f.size(), 1u);
         ExpectValidSurfels(f, s, {0});
         EXPECT_EQ(f[0].position, P3(1, 2, 3));
@@ -186,7 +186,7 @@ TEST(SurfelGeneration, TwoPointsGiveANeedleClampedByMinAspect)
     gstest::PointSet s;
     s.Add(P3(0, 0, 0), P3(0, 0, 1));
     s.Add(P3(0, 2, 0), P3(0, 0, 1));
-    const std::vector<Surfel> f = Generate(s, {0, 0}, Params(1, 0.5), 0.4f);
+    const std::vector<Surfel> f = Generate(s, {0, 0}, GenerationParams(1, 0.5), 0.4f);
     ExpectValidSurfels(f, s, {0, 0});
     EXPECT_NEAR(std::abs(f[0].majorAxis[1]), 1 + 0.2, 1e-5);
     EXPECT_NEAR(f[0].minorAxis.Norm(), 0.1 + 0.2, 1e-5);
@@ -206,10 +206,10 @@ TEST(SurfelGeneration, NormalIsTheGaussianWeightedMean)
     double e[3];
     for (int k = 0; k < 3; ++k) e[k] = w1 * n1[k] + w1 * n2[k] + w3 * n3[k];
     const double len = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    const std::vector<Surfel> f = Generate(s, {0, 0, 0}, Params(1.0));
+    const std::vector<Surfel> f = Generate(s, {0, 0, 0}, GenerationParams(1.0));
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[0].normal[k], e[k] / len, 1e-6) << k;
     // A width much smaller than the cluster: every weight underflows, the plain mean is used.
-    const std::vector<Surfel> g = Generate(s, {0, 0, 0}, Params(1e-3));
+    const std::vector<Surfel> g = Generate(s, {0, 0, 0}, GenerationParams(1e-3));
     P3 plain = n1 + n2 + n3;
     plain.Normalize();
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(g[0].normal[k], plain[k], 1e-6) << k;
@@ -221,7 +221,7 @@ TEST(SurfelGeneration, CoincidentPointsGetAValidFrame)
 {
     gstest::PointSet s;
     for (int i = 0; i < 5; ++i) s.Add(P3(1, 1, 1), P3(0, 0, 1));
-    const std::vector<Surfel> f = Generate(s, IndexArray(5, 0), Params(), 0.1f);
+    const std::vector<Surfel> f = Generate(s, IndexArray(5, 0), GenerationParams(), 0.1f);
     ExpectValidSurfels(f, s, IndexArray(5, 0));
     EXPECT_NEAR(f[0].majorAxis.Norm(), 0.075, 1e-6);
 }
@@ -233,7 +233,7 @@ TEST(SurfelGeneration, ExcludedPointsAreIgnored)
     IndexArray label(16, -1);
     for (int i = 0; i < 4; ++i) label[i] = 0;      // row y = 0
     for (int i = 12; i < 16; ++i) label[i] = 1;    // row y = 3
-    const std::vector<Surfel> f = Generate(s, label, Params());
+    const std::vector<Surfel> f = Generate(s, label, GenerationParams());
     ASSERT_EQ(f.size(), 2u);
     ExpectValidSurfels(f, s, label);
     EXPECT_NEAR(f[0].position[1], 0, 1e-6);
