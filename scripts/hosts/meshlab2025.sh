@@ -24,8 +24,10 @@ dir="$(realpath -m "$HOSTS_REPO/.deps/meshlab-2025.07")"
 inside=/opt/meshlab-2025.07
 plugins=(io_base)
 jobs="${JOBS:-2}"
-options=(-DCMAKE_BUILD_TYPE=Release -DMESHLAB_BUILD_MINI=ON
-         "-DMESHLAB_PLUGINS=$(printf 'meshlabplugins/%s;' "${plugins[@]}" | sed 's/;$//')")
+# -O1: the host is a test fixture, built on every CI machine in the CPU the other stages leave;
+# its optimisation changes nothing the checks see, and -O1 compiles in less CPU time than -O3.
+options=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG"
+         -DMESHLAB_BUILD_MINI=ON "-DMESHLAB_PLUGINS=$(printf 'meshlabplugins/%s;' "${plugins[@]}" | sed 's/;$//')")
 
 "$(dirname "${BASH_SOURCE[0]}")/trixie_root.sh"
 
