@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """ctest bench.smoke: one small comparison (ours at n = 8 against CGAL's hierarchy clustering)
 through gsbench and report.py; fails unless every figure of the table is present and finite.
-Timings are only required to exist: their values depend on the machine."""
+Then gsbench knn (nanoflann's reference neighbour search): one finite time, and a misspelt option
+refused. Timings are only required to exist: their values depend on the machine."""
 import argparse
 import csv
 import math
@@ -60,6 +61,17 @@ def main():
             fail(f"table1.md lacks the row {needed!r}")
     if "nan" in table.lower():
         fail("table1.md shows a NaN")
+
+    knn = subprocess.run([args.gsbench, "knn", args.input, "--runs", "1"], capture_output=True, text=True)
+    try:
+        seconds = float(knn.stdout)
+    except ValueError:
+        fail(f"gsbench knn printed {knn.stdout!r} (status {knn.returncode}, {knn.stderr.strip()!r})")
+    if knn.returncode != 0 or not math.isfinite(seconds) or seconds <= 0:
+        fail(f"gsbench knn: status {knn.returncode}, {seconds} s")
+    misspelt = subprocess.run([args.gsbench, "knn", args.input, "--kk", "16"], capture_output=True, text=True)
+    if misspelt.returncode == 0 or "unknown option --kk" not in misspelt.stderr:
+        fail(f"gsbench knn --kk: status {misspelt.returncode}, {misspelt.stderr.strip()!r}")
     print("bench.smoke: ok")
 
 

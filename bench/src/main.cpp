@@ -52,6 +52,12 @@
 //     normals, to PREFIX_METHOD.ply; appends one CSV row per peer (count, parameters, whether
 //     it matched) to OUT.csv (default stdout). The downstream benchmark reconstructs surfaces
 //     from these files (scripts/bench_downstream.sh).
+//
+//   gsbench knn INPUT.ply [--k K] [--threads T] [--runs R]
+//     Prints the median seconds over R runs (default 5) of the k nearest neighbours (default 16,
+//     the resampler's default) of every point by nanoflann's kd-tree, its build included, on T
+//     threads (default 2): the paper's first step by a standard library, beside the whole
+//     filter's time (bench/filter_speed.sh).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -77,6 +83,7 @@
 #include <vcg_ext/gaussphere/surfels/surfel_mesh.h>
 
 #include "child_process.h"
+#include "knn_reference.h"
 #include "peers.h"
 #include "point_sets.h"
 
@@ -783,6 +790,22 @@ int Export(const std::string &inputPath, const Options &opt)
     return 0;
 }
 
+int Neighbors(const std::string &inputPath, const Options &opt)
+{
+    const int k = opt.Int("--k", 16);
+    const int threads = opt.Int("--threads", 2);
+    const int runs = opt.Int("--runs", 5);
+    opt.RejectUnused();
+    if (k < 1 || threads < 1 || runs < 1) throw std::invalid_argument("--k, --threads and --runs must be positive");
+    PointMesh input;
+    LoadPointSet(inputPath, input);
+    omp_set_num_threads(threads);
+    std::vector<double> seconds;
+    for (int r = 0; r < runs; ++r) seconds.push_back(TimeNanoflannNeighbors(input, k));
+    std::printf("%.4f\n", Median(seconds));
+    return 0;
+}
+
 int Usage(const char *program)
 {
     std::fprintf(stderr,
@@ -794,8 +817,9 @@ int Usage(const char *program)
                  "                  [--variation V] [--cell C] [--target-count C] [--max-error E] [--seed-salt S]\n"
                  "       %s export INPUT.ply --count N --out PREFIX [--methods LIST] [--meshlabserver PATH]\n"
                  "                  [--work DIR] [--tolerance F] [--csv OUT.csv]\n"
+                 "       %s knn INPUT.ply [--k K] [--threads T] [--runs R]\n"
                  "(see the comment at the top of bench/src/main.cpp)\n",
-                 program, program, program);
+                 program, program, program, program);
     return 2;
 }
 
@@ -808,6 +832,7 @@ int main(int argc, char **argv)
         if (command == "compare" && argc >= 3) return Compare(argv[2], Options(argc, argv, 3));
         if (command == "run" && argc >= 5) return RunOne(argv[2], argv[3], argv[4], Options(argc, argv, 5));
         if (command == "export" && argc >= 3) return Export(argv[2], Options(argc, argv, 3));
+        if (command == "knn" && argc >= 3) return Neighbors(argv[2], Options(argc, argv, 3));
         return Usage(argv[0]);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "gsbench: %s\n", e.what());
