@@ -1,6 +1,6 @@
 // Exchanges for the largest error at a fixed count (max_error_exchange.h): the local measure
-// agrees with a full one, the exchange keeps the count and lowers the metric's Delta*max, and it
-// runs only where it is asked for.
+// (blended_distances.h) agrees with a full one, the exchange keeps the count and lowers the metric's
+// Delta*max, and it runs only where it is asked for.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include <vcg_ext/gaussphere/size_control/blended_distances.h>
 #include <vcg_ext/gaussphere/size_control/max_error_exchange.h>
 
 #include "pipeline_support.h"

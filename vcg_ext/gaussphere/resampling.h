@@ -14,6 +14,7 @@
 //      TargetCount: level search,                                   size_control/level_search.h
 //                   splits or merges                                size_control/cluster_refinement.h
 //                   and exchanges for the largest error             size_control/max_error_exchange.h
+//                   (their distances measured where changes reach)  size_control/blended_distances.h
 //      ErrorBound: splits until every point is within the bound    size_control/surface_error_bound.h
 //   surfels fitted to the blended surface                           surfels/surfel_offset.h
 //   with narrower blends around creases                             surfels/crease_blend.h
