@@ -54,5 +54,5 @@ for model in dragon igea; do
     printf "| %s | %d | %.3f | %.3f (%.1f %%) | %.3f | %.3f | %.3f | %.2f |\n", m, c, w, a, 100 * a / (w - a), n, f, h, w / h }'
 done
 echo
-echo "commit $(git -C "$here" rev-parse --short HEAD), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%F)"
+echo "commit $(git -C "$here" rev-parse --short HEAD), $rounds rounds, $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%F)"
 } | tee "$here/bench/results/filter_speed.md"

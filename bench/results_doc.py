@@ -575,7 +575,7 @@ def results_doc():
                   "`bash bench/filter_speed.sh`: the filter's own figures for its whole run, for its glue "
                   "around the algorithm and for the algorithm's neighbour search (its log lines); nanoflann's "
                   "kd-tree finding the 16 nearest neighbours of every point, the paper's first step by a "
-                  "standard library; CGAL's hierarchy in process at our count. Medians of 5 rounds, 2 threads, "
+                  "standard library; CGAL's hierarchy in process at our count. Medians over the rounds the stamp gives, 2 threads, "
                   "level 8. Below 1×: the whole filter is faster.",
                   read(filter_md).strip()]
 
