@@ -162,7 +162,6 @@ bool MarkCovered(const std::string &dir, const Manifest &manifest, const Orphans
     if (orphans.positions.empty()) return true;
     const PointCloud cloud{orphans.positions};
     PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    tree.buildIndex();
     std::vector<surfel_io::SurfelRecord> records;
     std::vector<std::pair<unsigned, float>> near;
     for (const TileEntry &tile : manifest.tiles) {

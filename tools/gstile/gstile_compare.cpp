@@ -95,7 +95,6 @@ void PrintNearestSpacing(const char *name, const Output &out)
     const std::vector<Point> centres = Centres(out);
     const PointCloud cloud{centres};
     PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    tree.buildIndex();
     std::vector<double> inside, across;
     for (std::size_t i = 0; i < centres.size(); ++i) {
         unsigned index[2];
@@ -129,7 +128,6 @@ void PrintBorderHoles(const char *name, const Output &out, const vcg::gaussphere
     const std::vector<Point> centres = Centres(out);
     const PointCloud cloud{centres};
     PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    tree.buildIndex();
     std::size_t border = 0, holes = 0;
     for (const auto &v : input.vert) {
         const float p[3] = {v.cP()[0], v.cP()[1], v.cP()[2]};

@@ -19,7 +19,7 @@ struct PointCloud
     bool kdtree_get_bbox(Box &) const { return false; }
 };
 
-/// Build with PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)); tree.buildIndex().
+/// PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) builds the index (nanoflann 1.4 on).
 typedef nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointCloud>, PointCloud, 3> PointTree;
 
 } // namespace gstile

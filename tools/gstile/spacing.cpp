@@ -26,7 +26,6 @@ double EstimateSpacing(const PointSample &sample)
     if (m <= j) return 0;
     const PointCloud cloud{sample.Points()};
     PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    tree.buildIndex();
     std::vector<double> local;
     local.reserve(m);
     const double toInput = std::sqrt(M_PI * double(m) / (double(sample.Seen()) * double(j)));
